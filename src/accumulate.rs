@@ -1,0 +1,98 @@
+//! Per-triangle tangents for every policy but LEGACY, summed per vertex by handedness.
+#![forbid(unsafe_code)]
+
+use glam::{Vec2, Vec3};
+
+use crate::degenerate::{confidence, position_quality, uv_quality};
+use crate::mesh::Mesh;
+use crate::options::{Method, Options};
+use crate::report::Report;
+use crate::scratch::{flag, Scratch};
+use crate::status::Error;
+use crate::strided::Strided;
+
+/// What one non-degenerate triangle contributes.
+struct FaceTangent {
+    /// dP/du, scaled by the triangle's confidence.
+    tangent: Vec3,
+    /// Unnormalized face normal `Q1 x Q2`, the orientation the winding gives.
+    face_normal: Vec3,
+    /// Sign of the UV determinant: true when the UV triangle winds counter-clockwise.
+    positive_uv: bool,
+}
+
+/// Solves `Q1 = s1 T + t1 B`, `Q2 = s2 T + t2 B` for `T` (Lengyel 2001), or `None` when the
+/// triangle is degenerate: a non-finite input, or a UV or position quality below `threshold`.
+///
+/// The UV edges are divided by their largest component before the 2x2 solve, so the determinant
+/// stays near 1 whatever the UV scale (1e-20 would otherwise underflow it).
+#[inline(always)]
+fn face_tangent(p: [Vec3; 3], uv: [Vec2; 3], v_sign: f32, threshold: f32) -> Option<FaceTangent> {
+    let (q1, q2) = (p[1] - p[0], p[2] - p[0]);
+    let flip = Vec2::new(1.0, v_sign);
+    let (e1, e2) = ((uv[1] - uv[0]) * flip, (uv[2] - uv[0]) * flip);
+    if !(q1.is_finite() && q2.is_finite() && e1.is_finite() && e2.is_finite()) {
+        return None;
+    }
+    let uv_q = uv_quality(e1, e2);
+    if !(uv_q >= threshold && uv_q > 0.0) || !(position_quality(q1, q2) >= threshold) {
+        return None;
+    }
+    let scale = e1.abs().max(e2.abs()).max_element();
+    let (e1, e2) = (e1 / scale, e2 / scale);
+    let det = e1.perp_dot(e2);
+    let tangent = (q1 * e2.y - q2 * e1.y) * (confidence(uv_q) / (det * scale));
+    tangent.is_finite().then(|| FaceTangent {
+        tangent,
+        face_normal: q1.cross(q2),
+        positive_uv: det > 0.0,
+    })
+}
+
+/// Adds each triangle's tangent to its corners, split by the corner's handedness (the UV
+/// orientation relative to the vertex normal), so that a vertex on a mirror fold can keep one
+/// side's frame instead of a cancelled sum. Degenerate triangles only mark their vertices used.
+pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch, report: &mut Report) -> Result<(), Error> {
+    let v_sign = if options.flip_v { -1.0 } else { 1.0 };
+    for t in 0..mesh.indices.triangle_count(mesh.vertex_count())? {
+        let corners = mesh.checked_triangle(t)?;
+        let face = mesh.texcoords.and_then(|uvs| {
+            let p = corners.map(|v| Vec3::from_array(mesh.positions.get(v)));
+            face_tangent(p, texcoords_of(uvs, corners), v_sign, options.degenerate_threshold)
+        });
+        let Some(face) = face else {
+            if mesh.texcoords.is_some() {
+                report.note_degenerate(t);
+            }
+            corners.iter().for_each(|&v| scratch.flags[v] |= flag::REFERENCED);
+            continue;
+        };
+        let orientation = if face.positive_uv {
+            flag::POSITIVE_UV
+        } else {
+            flag::NEGATIVE_UV
+        };
+        let weight = match options.method {
+            Method::Lengyel => face.tangent.length(),
+        };
+        for v in corners {
+            let normal = Vec3::from_array(mesh.normals.get(v));
+            let right_handed = face.positive_uv != (normal.dot(face.face_normal) < 0.0);
+            let sums = &mut scratch.sums[v];
+            let side = if right_handed {
+                &mut sums.primary
+            } else {
+                &mut sums.secondary
+            };
+            *side = (Vec3::from_array(*side) + face.tangent).to_array();
+            sums.weight += weight;
+            scratch.flags[v] |= flag::REFERENCED | orientation;
+        }
+    }
+    Ok(())
+}
+
+#[inline(always)]
+fn texcoords_of(uvs: Strided<[f32; 2]>, corners: [usize; 3]) -> [Vec2; 3] {
+    corners.map(|v| Vec2::from_array(uvs.get(v)))
+}

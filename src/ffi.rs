@@ -1,0 +1,478 @@
+//! The C ABI: descriptors in, statuses out, no panic across the boundary.
+//!
+//! Each function copies the caller's descriptor structs by value, turns pointers and strides into
+//! bounds-carrying views (checking NULLs, strides and sizes), and calls the safe core inside
+//! `catch_unwind`. The doc comments here are the manual cbindgen writes into `include/tbasis.h`.
+#![allow(non_camel_case_types)]
+
+use core::ffi::{c_char, c_long, c_void};
+use core::mem::size_of;
+use core::ptr;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use crate::generate::{generate_into, scratch_size};
+use crate::mesh::{Indices, Mesh, Output};
+use crate::options::Options;
+use crate::report::Report;
+use crate::status::Error;
+use crate::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
+use crate::validate::check_overlaps;
+
+/// Result of a call: `TBASIS_OK` (0) or one of the `TBASIS_ERROR_*` values, which never change.
+pub type tbasis_status = u32;
+
+/// Success.
+pub const TBASIS_OK: tbasis_status = 0;
+/// A required pointer is NULL: `mesh`, `output`, `output->tangents`, or a vertex or index buffer
+/// whose count is nonzero (`texcoords` may be NULL except with policy LEGACY).
+pub const TBASIS_ERROR_NULL_POINTER: tbasis_status = 1;
+/// A stride is smaller than its element: 12 bytes for positions and normals, 8 for texcoords,
+/// 16 for tangents, 12 for bitangents.
+pub const TBASIS_ERROR_INVALID_STRIDE: tbasis_status = 2;
+/// `index_count` (or, when `indices` is NULL, `vertex_count`) is not a multiple of 3.
+pub const TBASIS_ERROR_INVALID_INDEX_COUNT: tbasis_status = 3;
+/// An index is not less than `vertex_count`.
+pub const TBASIS_ERROR_INDEX_OUT_OF_RANGE: tbasis_status = 4;
+/// `index_type` is neither `TBASIS_INDEX_U16` nor `TBASIS_INDEX_U32` while `indices` is not NULL.
+pub const TBASIS_ERROR_INVALID_INDEX_TYPE: tbasis_status = 5;
+/// `options->method` is not a `TBASIS_METHOD_*` value.
+pub const TBASIS_ERROR_UNKNOWN_METHOD: tbasis_status = 6;
+/// `options->degenerate_policy` is not a `TBASIS_DEGENERATE_*` value.
+pub const TBASIS_ERROR_UNKNOWN_POLICY: tbasis_status = 7;
+/// `options->flags` has a bit that no `TBASIS_FLAG_*` names.
+pub const TBASIS_ERROR_UNKNOWN_FLAGS: tbasis_status = 8;
+/// `stride * count`, or the address range a buffer spans, overflows.
+pub const TBASIS_ERROR_SIZE_OVERFLOW: tbasis_status = 9;
+/// An output byte is also an input byte, a byte of the other output, or a scratch byte (or the
+/// scratch shares a byte with an input). Interleaving outputs between inputs is fine.
+pub const TBASIS_ERROR_OVERLAP: tbasis_status = 10;
+/// Policy REJECT found a degenerate triangle; `report->first_degenerate_triangle` names it.
+pub const TBASIS_ERROR_DEGENERATE_UV: tbasis_status = 11;
+/// Allocating the scratch failed.
+pub const TBASIS_ERROR_OUT_OF_MEMORY: tbasis_status = 12;
+/// `options->scratch` is not NULL and `options->scratch_size` is below `tbasis_scratch_size`.
+pub const TBASIS_ERROR_SCRATCH_TOO_SMALL: tbasis_status = 13;
+/// `options->degenerate_threshold` is negative, NaN or infinite.
+pub const TBASIS_ERROR_INVALID_THRESHOLD: tbasis_status = 14;
+/// A count is negative (`tbasis_calculate_tangent_array` takes `long`).
+pub const TBASIS_ERROR_INVALID_COUNT: tbasis_status = 15;
+/// A bug in the library was caught at the boundary.
+pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
+
+/// `index_type`: 16-bit indices.
+pub const TBASIS_INDEX_U16: u32 = 1;
+/// `index_type`: 32-bit indices.
+pub const TBASIS_INDEX_U32: u32 = 2;
+
+/// `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
+pub const TBASIS_METHOD_LENGYEL: u32 = 1;
+
+/// `degenerate_policy`: exactly the listing, bit for bit, including its inf/NaN.
+pub const TBASIS_DEGENERATE_LEGACY: u32 = 1;
+/// `degenerate_policy`: degenerate triangles contribute nothing; vertices left without a tangent
+/// get the fallback frame built from their normal.
+pub const TBASIS_DEGENERATE_SKIP: u32 = 2;
+/// `degenerate_policy` (the default): like SKIP, but vertices left without a tangent first take
+/// one from their neighbours across shared triangles.
+pub const TBASIS_DEGENERATE_INHERIT: u32 = 3;
+/// `degenerate_policy`: refuse a mesh with any degenerate triangle (`TBASIS_ERROR_DEGENERATE_UV`).
+pub const TBASIS_DEGENERATE_REJECT: u32 = 4;
+
+/// `flags` bit: texture coordinates have V pointing down (glTF, Direct3D). The frame is computed
+/// as for `v' = 1 - v`, so `w` matches what those conventions expect.
+pub const TBASIS_FLAG_FLIP_V: u32 = 1;
+
+/// The triangle mesh, read in place. Each attribute pointer addresses vertex 0; vertex `i` starts
+/// `i * stride` bytes after it. Pointers need no alignment; strides are in bytes.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct tbasis_mesh {
+    /// Number of vertices.
+    pub vertex_count: usize,
+    /// float x, y, z in the first 12 bytes of each vertex; `(vertex_count - 1) * positions_stride + 12` bytes.
+    pub positions: *const c_void,
+    /// Bytes from one position to the next; at least 12.
+    pub positions_stride: usize,
+    /// float x, y, z in the first 12 bytes of each vertex, expected unit length.
+    pub normals: *const c_void,
+    /// Bytes from one normal to the next; at least 12.
+    pub normals_stride: usize,
+    /// float u, v in the first 8 bytes of each vertex; NULL: every vertex gets the fallback frame
+    /// (not allowed with policy LEGACY).
+    pub texcoords: *const c_void,
+    /// Bytes from one texture coordinate to the next; at least 8.
+    pub texcoords_stride: usize,
+    /// `index_count` packed indices of `index_type`; NULL: unindexed, triangle `i` is vertices
+    /// `3i, 3i+1, 3i+2`.
+    pub indices: *const c_void,
+    /// Number of indices, a multiple of 3 (ignored when `indices` is NULL).
+    pub index_count: usize,
+    /// `TBASIS_INDEX_U16` or `TBASIS_INDEX_U32` (ignored when `indices` is NULL).
+    pub index_type: u32,
+}
+
+/// How to compute. All-zero (or a NULL pointer) means the defaults.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct tbasis_options {
+    /// A `TBASIS_METHOD_*` value; 0: the recommended default.
+    pub method: u32,
+    /// A `TBASIS_DEGENERATE_*` value; 0: the default (`TBASIS_DEGENERATE_INHERIT`).
+    pub degenerate_policy: u32,
+    /// `TBASIS_FLAG_*` bits; unknown bits are an error.
+    pub flags: u32,
+    /// Upper bound on threads; 0 or 1: the calling thread only.
+    pub threads: u32,
+    /// UV and position shape quality (1 = equilateral, 0 = collapsed) below which a triangle is
+    /// degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
+    pub degenerate_threshold: f32,
+    /// Optional caller memory of `scratch_size` bytes, any alignment, not shared with any other
+    /// buffer; the call then allocates nothing. NULL: the library allocates.
+    pub scratch: *mut c_void,
+    /// Size of `scratch` in bytes; at least `tbasis_scratch_size(mesh, options)`.
+    pub scratch_size: usize,
+}
+
+/// Where results go. Each pointer addresses vertex 0; vertex `i` starts `i * stride` bytes after.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct tbasis_output {
+    /// float x, y, z, w written into the first 16 bytes of each vertex: unit tangent and
+    /// handedness w = +1 or -1; `(vertex_count - 1) * tangents_stride + 16` bytes. Required.
+    pub tangents: *mut c_void,
+    /// Bytes from one tangent to the next; at least 16.
+    pub tangents_stride: usize,
+    /// float x, y, z written into the first 12 bytes of each vertex: `w * cross(n, t)`.
+    /// NULL: not written.
+    pub bitangents: *mut c_void,
+    /// Bytes from one bitangent to the next; at least 12.
+    pub bitangents_stride: usize,
+}
+
+/// What the call found; filled on `TBASIS_OK` and on `TBASIS_ERROR_DEGENERATE_UV`.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct tbasis_report {
+    /// Triangles whose UV determinant is zero (LEGACY) or whose UV or position quality is below the
+    /// threshold (other policies), or that read a non-finite input.
+    pub degenerate_triangles: usize,
+    /// Index of the first such triangle; `SIZE_MAX` when none.
+    pub first_degenerate_triangle: usize,
+    /// Vertices given the fallback frame built from their normal alone (never with LEGACY).
+    pub fallback_vertices: usize,
+    /// Vertices used by non-degenerate triangles of both UV orientations (mirror folds).
+    pub mirrored_vertices: usize,
+    /// Vertices no triangle uses.
+    pub unreferenced_vertices: usize,
+    /// Vertices that took their tangent from neighbours (policy INHERIT).
+    pub inherited_vertices: usize,
+}
+
+impl From<Report> for tbasis_report {
+    fn from(r: Report) -> Self {
+        tbasis_report {
+            degenerate_triangles: r.degenerate_triangles,
+            first_degenerate_triangle: r.first_degenerate_triangle,
+            fallback_vertices: r.fallback_vertices,
+            mirrored_vertices: r.mirrored_vertices,
+            unreferenced_vertices: r.unreferenced_vertices,
+            inherited_vertices: r.inherited_vertices,
+        }
+    }
+}
+
+/// Runs `body` and turns a panic (a library bug) into `TBASIS_ERROR_INTERNAL`.
+fn boundary(body: impl FnOnce() -> Result<(), Error>) -> tbasis_status {
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(())) => TBASIS_OK,
+        Ok(Err(error)) => error.code(),
+        Err(_) => TBASIS_ERROR_INTERNAL,
+    }
+}
+
+/// Checks a C buffer: its stride covers its element, it is not NULL when it has elements, and its
+/// span `(count - 1) * stride + size` fits below the end of the address space.
+fn check_buffer(base: *const c_void, stride: usize, count: usize, size: usize) -> Result<(), Error> {
+    let span = span_bytes(count, stride, size)?;
+    if count > 0 && base.is_null() {
+        return Err(Error::NullPointer);
+    }
+    (base as usize).checked_add(span).map(|_| ()).ok_or(Error::SizeOverflow)
+}
+
+/// A read view over caller memory, once [`check_buffer`] passes.
+///
+/// # Safety
+/// The caller of the C function promised `base` is readable for the span the header documents.
+unsafe fn read_view<'a, T: Element>(base: *const c_void, stride: usize, count: usize) -> Result<Strided<'a, T>, Error> {
+    check_buffer(base, stride, count, size_of::<T>())?;
+    Ok(Strided::from_raw(base.cast(), stride, count))
+}
+
+/// A write view over caller memory, once [`check_buffer`] passes.
+///
+/// # Safety
+/// The caller of the C function promised `base` is writable for the span the header documents.
+unsafe fn write_view<'a, T: Element>(
+    base: *mut c_void,
+    stride: usize,
+    count: usize,
+) -> Result<StridedMut<'a, T>, Error> {
+    check_buffer(base, stride, count, size_of::<T>())?;
+    Ok(StridedMut::from_raw(base.cast(), stride, count))
+}
+
+/// Builds the safe views of a C mesh description.
+unsafe fn mesh_views<'a>(m: &tbasis_mesh) -> Result<Mesh<'a>, Error> {
+    let count = m.vertex_count;
+    let texcoords = if m.texcoords.is_null() {
+        None
+    } else {
+        Some(read_view(m.texcoords, m.texcoords_stride, count)?)
+    };
+    let indices = if m.indices.is_null() {
+        Indices::None
+    } else {
+        match m.index_type {
+            TBASIS_INDEX_U16 => Indices::U16(read_view(m.indices, size_of::<u16>(), m.index_count)?),
+            TBASIS_INDEX_U32 => Indices::U32(read_view(m.indices, size_of::<u32>(), m.index_count)?),
+            _ => return Err(Error::InvalidIndexType),
+        }
+    };
+    if m.indices.is_null() && m.index_count != 0 {
+        return Err(Error::NullPointer);
+    }
+    Ok(Mesh {
+        positions: read_view(m.positions, m.positions_stride, count)?,
+        normals: read_view(m.normals, m.normals_stride, count)?,
+        texcoords,
+        indices,
+    })
+}
+
+/// Builds the safe views of a C output description.
+unsafe fn output_views<'a>(o: &tbasis_output, count: usize) -> Result<Output<'a>, Error> {
+    let bitangents = if o.bitangents.is_null() {
+        None
+    } else {
+        Some(write_view(o.bitangents, o.bitangents_stride, count)?)
+    };
+    Ok(Output {
+        tangents: write_view(o.tangents, o.tangents_stride, count)?,
+        bitangents,
+    })
+}
+
+/// The options a C call asks for, defaults for NULL.
+fn options_of(options: Option<tbasis_options>) -> Result<Options, Error> {
+    match options {
+        None => Ok(Options::default()),
+        Some(o) => Options::from_codes(
+            o.method,
+            o.degenerate_policy,
+            o.flags,
+            o.degenerate_threshold,
+            o.threads,
+        ),
+    }
+}
+
+/// Computes a unit tangent and handedness for every vertex.
+///
+/// Per triangle, solves `Q1 = s1*T + t1*B`, `Q2 = s2*T + t2*B` for the texture-aligned tangent `T`
+/// and bitangent `B` (`Q` are position edges, `s, t` UV edges); per vertex, sums them, removes the
+/// normal (`T' = T - (N.T)N`), normalizes, and stores the handedness `w = +1 or -1` so that
+/// `bitangent = w * cross(normal, tangent.xyz)`.
+///
+/// - `mesh`: required; buffers of `vertex_count` vertices (see `tbasis_mesh`).
+/// - `options`: NULL or all-zero for the defaults.
+/// - `output->tangents`: `(vertex_count - 1) * tangents_stride + 16` bytes, written only on
+///   `TBASIS_OK`; it may sit inside the same interleaved vertex array as the inputs, as long as
+///   no byte is shared.
+/// - `report`: NULL, or filled on `TBASIS_OK` and on `TBASIS_ERROR_DEGENERATE_UV`.
+///
+/// With method LENGYEL and policy LEGACY the results are bit-identical to the original listing.
+/// With the other policies every tangent is finite, unit length, orthogonal to its (normalized)
+/// normal, and `w` is exactly +1 or -1.
+///
+/// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
+/// `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_UNKNOWN_METHOD`, `_UNKNOWN_POLICY`,
+/// `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`, `_OUT_OF_MEMORY`,
+/// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error no output byte
+/// has been written.
+///
+/// # Safety
+/// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_generate(
+    mesh: *const tbasis_mesh,
+    options: *const tbasis_options,
+    output: *const tbasis_output,
+    report: *mut tbasis_report,
+) -> tbasis_status {
+    boundary(|| {
+        if mesh.is_null() || output.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let mesh_desc = ptr::read_unaligned(mesh);
+        let output_desc = ptr::read_unaligned(output);
+        let options_desc = if options.is_null() {
+            None
+        } else {
+            Some(ptr::read_unaligned(options))
+        };
+        let opts = options_of(options_desc)?;
+        let views = mesh_views(&mesh_desc)?;
+        let mut out = output_views(&output_desc, mesh_desc.vertex_count)?;
+
+        let scratch = match options_desc {
+            Some(o) if !o.scratch.is_null() => {
+                let needed = scratch_size(mesh_desc.vertex_count).ok_or(Error::SizeOverflow)?;
+                if o.scratch_size < needed {
+                    return Err(Error::ScratchTooSmall);
+                }
+                check_buffer(o.scratch, 1, o.scratch_size, 1)?;
+                let footprint = Footprint {
+                    start: o.scratch as usize,
+                    stride: 1,
+                    size: 1,
+                    count: o.scratch_size,
+                };
+                // The slice is formed only once it is known to share no byte with any other buffer.
+                check_overlaps(&views, &out, Some(footprint))?;
+                Some(core::slice::from_raw_parts_mut(o.scratch.cast::<u8>(), o.scratch_size))
+            }
+            _ => None,
+        };
+
+        let mut found = Report::default();
+        let result = generate_into(&views, &opts, &mut out, scratch, &mut found);
+        if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
+            ptr::write_unaligned(report, tbasis_report::from(found));
+        }
+        result
+    })
+}
+
+/// Drop-in for the original listing's `CalculateTangentArray`, with its packed layouts: `vertex`
+/// and `normal` hold 3 floats per vertex, `texcoord` 2, `triangle` 3 `uint16_t` per triangle,
+/// `tangent` receives 4 floats per vertex (`vertex_count * 16` bytes). Same results, bit for bit
+/// (method LENGYEL, policy LEGACY), but checked: bad input returns a status and writes nothing.
+///
+/// Returns `TBASIS_OK`; `TBASIS_ERROR_INVALID_COUNT` (a negative count),
+/// `TBASIS_ERROR_NULL_POINTER`, `TBASIS_ERROR_INDEX_OUT_OF_RANGE`, `TBASIS_ERROR_SIZE_OVERFLOW`,
+/// `TBASIS_ERROR_OVERLAP`, `TBASIS_ERROR_OUT_OF_MEMORY` or `TBASIS_ERROR_INTERNAL`.
+///
+/// # Safety
+/// The pointers must be valid for the sizes above.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_calculate_tangent_array(
+    vertex_count: c_long,
+    vertex: *const f32,
+    normal: *const f32,
+    texcoord: *const f32,
+    triangle_count: c_long,
+    triangle: *const u16,
+    tangent: *mut f32,
+) -> tbasis_status {
+    boundary(|| {
+        let vertex_count = usize::try_from(vertex_count).map_err(|_| Error::InvalidCount)?;
+        let triangle_count = usize::try_from(triangle_count).map_err(|_| Error::InvalidCount)?;
+        let index_count = triangle_count.checked_mul(3).ok_or(Error::SizeOverflow)?;
+        let mesh = Mesh {
+            positions: read_view(vertex.cast(), 12, vertex_count)?,
+            normals: read_view(normal.cast(), 12, vertex_count)?,
+            texcoords: Some(read_view(texcoord.cast(), 8, vertex_count)?),
+            indices: Indices::U16(read_view(triangle.cast(), 2, index_count)?),
+        };
+        let mut output = Output {
+            tangents: write_view(tangent.cast(), 16, vertex_count)?,
+            bitangents: None,
+        };
+        generate_into(&mesh, &Options::legacy(), &mut output, None, &mut Report::default())
+    })
+}
+
+/// Bytes of `options->scratch` a `tbasis_generate` call on `mesh` needs:
+/// `vertex_count * 29 + 3`, or 0 when `vertex_count` is 0. Returns `SIZE_MAX` when `mesh` is NULL
+/// or the size overflows. `options` may be NULL.
+///
+/// # Safety
+/// `mesh` must be NULL or point to a readable `tbasis_mesh`.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_scratch_size(mesh: *const tbasis_mesh, options: *const tbasis_options) -> usize {
+    let _ = options;
+    if mesh.is_null() {
+        return usize::MAX;
+    }
+    let mesh = ptr::read_unaligned(mesh);
+    scratch_size(mesh.vertex_count).unwrap_or(usize::MAX)
+}
+
+/// A static, NUL-terminated English description of `status`; unknown values get one too.
+/// The pointer stays valid for the life of the program; do not free it.
+#[no_mangle]
+pub extern "C" fn tbasis_status_string(status: tbasis_status) -> *const c_char {
+    let text = match status {
+        TBASIS_OK => "success\0",
+        code => Error::from_code(code).map_or("unknown status\0", Error::message_nul),
+    };
+    text.as_ptr().cast()
+}
+
+/// The library's version, `TBASIS_VERSION_MAJOR * 1000000 + TBASIS_VERSION_MINOR * 1000 +
+/// TBASIS_VERSION_PATCH`, equal to the header's `TBASIS_VERSION` when header and library match.
+#[no_mangle]
+pub extern "C" fn tbasis_version() -> u32 {
+    VERSION
+}
+
+const VERSION: u32 = {
+    const fn parse(text: &str) -> u32 {
+        let bytes = text.as_bytes();
+        let mut value = 0;
+        let mut i = 0;
+        while i < bytes.len() {
+            value = value * 10 + (bytes[i] - b'0') as u32;
+            i += 1;
+        }
+        value
+    }
+    parse(env!("CARGO_PKG_VERSION_MAJOR")) * 1_000_000
+        + parse(env!("CARGO_PKG_VERSION_MINOR")) * 1_000
+        + parse(env!("CARGO_PKG_VERSION_PATCH"))
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn c_status_values_match_the_rust_errors() {
+        let c_values = [
+            TBASIS_ERROR_NULL_POINTER,
+            TBASIS_ERROR_INVALID_STRIDE,
+            TBASIS_ERROR_INVALID_INDEX_COUNT,
+            TBASIS_ERROR_INDEX_OUT_OF_RANGE,
+            TBASIS_ERROR_INVALID_INDEX_TYPE,
+            TBASIS_ERROR_UNKNOWN_METHOD,
+            TBASIS_ERROR_UNKNOWN_POLICY,
+            TBASIS_ERROR_UNKNOWN_FLAGS,
+            TBASIS_ERROR_SIZE_OVERFLOW,
+            TBASIS_ERROR_OVERLAP,
+            TBASIS_ERROR_DEGENERATE_UV,
+            TBASIS_ERROR_OUT_OF_MEMORY,
+            TBASIS_ERROR_SCRATCH_TOO_SMALL,
+            TBASIS_ERROR_INVALID_THRESHOLD,
+            TBASIS_ERROR_INVALID_COUNT,
+            TBASIS_ERROR_INTERNAL,
+        ];
+        let rust_values: Vec<u32> = Error::ALL.iter().map(|e| e.code()).collect();
+        assert_eq!(c_values.to_vec(), rust_values);
+    }
+
+    #[test]
+    fn a_panic_becomes_internal() {
+        assert_eq!(boundary(|| panic!("bug")), TBASIS_ERROR_INTERNAL);
+    }
+}

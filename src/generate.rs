@@ -1,0 +1,105 @@
+//! The entry point: one call from the caller's buffers to written tangents.
+#![forbid(unsafe_code)]
+
+use crate::mesh::{Mesh, Output};
+use crate::options::{DegeneratePolicy, Options};
+use crate::report::{count_flags, Report};
+use crate::scratch::{self, OwnedScratch};
+use crate::status::Error;
+use crate::strided::Footprint;
+use crate::{accumulate, legacy, resolve, validate};
+
+/// Computes a unit tangent and handedness for every vertex of `mesh` into `output`.
+///
+/// Returns what it found; on error nothing in `output` has been written. See [`generate_into`]
+/// for caller-provided scratch and for the report of a rejected mesh.
+///
+/// ```
+/// use tbasis::{generate, Indices, Mesh, Options, Output, Strided, StridedMut};
+///
+/// // One quad in the z = 0 plane, u along +x and v along +y.
+/// let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+/// let normals = [[0.0, 0.0, 1.0f32]; 4];
+/// let texcoords = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+/// let indices = [0u32, 1, 2, 0, 2, 3];
+/// let mut tangents = [[0.0f32; 4]; 4];
+///
+/// let mesh = Mesh {
+///     positions: Strided::from_slice(&positions),
+///     normals: Strided::from_slice(&normals),
+///     texcoords: Some(Strided::from_slice(&texcoords)),
+///     indices: Indices::U32(Strided::from_slice(&indices)),
+/// };
+/// let mut output = Output { tangents: StridedMut::from_slice(&mut tangents), bitangents: None };
+/// let report = generate(&mesh, &Options::default(), &mut output)?;
+///
+/// assert_eq!(tangents[0], [1.0, 0.0, 0.0, 1.0]);
+/// assert_eq!(report.degenerate_triangles, 0);
+/// # Ok::<(), tbasis::Error>(())
+/// ```
+pub fn generate(mesh: &Mesh, options: &Options, output: &mut Output) -> Result<Report, Error> {
+    let mut report = Report::default();
+    generate_into(mesh, options, output, None, &mut report)?;
+    Ok(report)
+}
+
+/// [`generate`] with optional caller scratch (at least [`scratch_size`] bytes, any alignment;
+/// then the call allocates nothing) and the report written to `report`, also when the call fails
+/// with [`Error::DegenerateUv`].
+pub fn generate_into(
+    mesh: &Mesh,
+    options: &Options,
+    output: &mut Output,
+    scratch: Option<&mut [u8]>,
+    report: &mut Report,
+) -> Result<(), Error> {
+    let vertex_count = mesh.vertex_count();
+    // 1. Nothing is written unless every check passes: options, counts, overlaps.
+    let scratch_footprint = scratch.as_deref().map(|bytes| Footprint {
+        start: bytes.as_ptr() as usize,
+        stride: 1,
+        size: 1,
+        count: bytes.len(),
+    });
+    validate::validate(mesh, options, output, scratch_footprint)?;
+
+    // 2. Working memory: per-vertex sums and flags, in the caller's scratch or on the heap.
+    let mut owned;
+    let mut scratch = match scratch {
+        Some(bytes) => scratch::carve(bytes, vertex_count)?,
+        None => {
+            owned = OwnedScratch::allocate(vertex_count)?;
+            owned.scratch()
+        }
+    };
+
+    // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners.
+    let mut found = Report::default();
+    match (options.degenerate_policy, mesh.texcoords) {
+        (DegeneratePolicy::Legacy, Some(uvs)) => {
+            legacy::accumulate(mesh, uvs, options.flip_v, &mut scratch, &mut found)?
+        }
+        _ => accumulate::accumulate(mesh, options, &mut scratch, &mut found)?,
+    }
+    count_flags(scratch.flags, &mut found);
+
+    // 4. REJECT refuses the mesh before anything is written, naming the first bad triangle.
+    if options.degenerate_policy == DegeneratePolicy::Reject && found.degenerate_triangles > 0 {
+        *report = found;
+        return Err(Error::DegenerateUv);
+    }
+
+    // 5. Per vertex: Gram-Schmidt against the normal, handedness in w, fallbacks; write.
+    match options.degenerate_policy {
+        DegeneratePolicy::Legacy => legacy::resolve(mesh, &scratch, output),
+        policy => resolve::write_all(mesh, policy, &mut scratch, output, &mut found),
+    }
+    *report = found;
+    Ok(())
+}
+
+/// Bytes of caller scratch a call on `vertex_count` vertices needs:
+/// `vertex_count * 29 + 3` (0 when empty); `None` when that overflows.
+pub fn scratch_size(vertex_count: usize) -> Option<usize> {
+    scratch::scratch_size(vertex_count)
+}

@@ -1,0 +1,102 @@
+//! The caller's mesh and output, as views over memory the library reads or writes in place.
+#![forbid(unsafe_code)]
+
+use crate::status::Error;
+use crate::strided::{Footprint, Strided, StridedMut};
+
+/// The index buffer: three indices per triangle, or none (triangle `i` is vertices `3i..3i+3`).
+#[derive(Clone, Copy)]
+pub enum Indices<'a> {
+    /// Unindexed: the vertex count must be a multiple of 3.
+    None,
+    /// 16-bit indices.
+    U16(Strided<'a, u16>),
+    /// 32-bit indices.
+    U32(Strided<'a, u32>),
+}
+
+impl<'a> Indices<'a> {
+    /// Number of triangles, given the vertex count (used when unindexed).
+    pub fn triangle_count(&self, vertex_count: usize) -> Result<usize, Error> {
+        let index_count = match self {
+            Indices::None => vertex_count,
+            Indices::U16(view) => view.len(),
+            Indices::U32(view) => view.len(),
+        };
+        if index_count % 3 != 0 {
+            return Err(Error::InvalidIndexCount);
+        }
+        Ok(index_count / 3)
+    }
+
+    /// The vertices of triangle `t` (callers keep `t` below `triangle_count`).
+    #[inline(always)]
+    pub fn triangle(&self, t: usize) -> [usize; 3] {
+        let first = 3 * t;
+        match self {
+            Indices::None => [first, first + 1, first + 2],
+            Indices::U16(view) => [0, 1, 2].map(|k| view.get(first + k) as usize),
+            Indices::U32(view) => [0, 1, 2].map(|k| view.get(first + k) as usize),
+        }
+    }
+
+    /// Where the index bytes are, if there are any.
+    pub fn footprint(&self) -> Option<Footprint> {
+        match self {
+            Indices::None => None,
+            Indices::U16(view) => Some(view.footprint()),
+            Indices::U32(view) => Some(view.footprint()),
+        }
+    }
+}
+
+/// A triangle mesh: per-vertex attributes as strided views, and its triangles.
+#[derive(Clone, Copy)]
+pub struct Mesh<'a> {
+    /// Positions (x, y, z).
+    pub positions: Strided<'a, [f32; 3]>,
+    /// Normals (x, y, z), expected unit length.
+    pub normals: Strided<'a, [f32; 3]>,
+    /// Texture coordinates (u, v); `None` gives every vertex the fallback frame.
+    pub texcoords: Option<Strided<'a, [f32; 2]>>,
+    /// The triangles.
+    pub indices: Indices<'a>,
+}
+
+impl<'a> Mesh<'a> {
+    /// Number of vertices (the positions' length; the other attributes must match it).
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+}
+
+/// Where results go.
+pub struct Output<'a> {
+    /// Tangent x, y, z and handedness w (+1 or -1) per vertex.
+    pub tangents: StridedMut<'a, [f32; 4]>,
+    /// Bitangent `w * cross(n, t)` per vertex, when wanted.
+    pub bitangents: Option<StridedMut<'a, [f32; 3]>>,
+}
+
+impl<'a> Mesh<'a> {
+    /// The vertices of triangle `t`, each checked to be below the vertex count.
+    #[inline(always)]
+    pub(crate) fn checked_triangle(&self, t: usize) -> Result<[usize; 3], Error> {
+        let corners = self.indices.triangle(t);
+        if corners.iter().any(|&v| v >= self.vertex_count()) {
+            return Err(Error::IndexOutOfRange);
+        }
+        Ok(corners)
+    }
+}
+
+impl<'a> Output<'a> {
+    /// Writes vertex `v`: tangent `(t, w)` and, when wanted, the bitangent `w * cross(n, t)`.
+    #[inline(always)]
+    pub(crate) fn write(&mut self, v: usize, t: glam::Vec3, w: f32, n: glam::Vec3) {
+        self.tangents.set(v, [t.x, t.y, t.z, w]);
+        if let Some(bitangents) = &mut self.bitangents {
+            bitangents.set(v, (n.cross(t) * w).to_array());
+        }
+    }
+}

@@ -1,0 +1,51 @@
+//! What a call found in the mesh and what it did about it.
+#![forbid(unsafe_code)]
+
+/// Counts filled on success and on [`crate::Error::DegenerateUv`]; the C `tbasis_report`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Report {
+    /// Triangles whose UV quality is below the threshold, whose positions have zero area, or
+    /// whose inputs are not finite. Policy LEGACY counts exactly-zero UV determinants only.
+    pub degenerate_triangles: usize,
+    /// Index of the first such triangle; `usize::MAX` when none.
+    pub first_degenerate_triangle: usize,
+    /// Vertices given the fallback frame built from their normal alone.
+    pub fallback_vertices: usize,
+    /// Vertices used by non-degenerate triangles of both handedness.
+    pub mirrored_vertices: usize,
+    /// Vertices no triangle uses.
+    pub unreferenced_vertices: usize,
+    /// Vertices that took their tangent from neighbours (policy INHERIT).
+    pub inherited_vertices: usize,
+}
+
+impl Default for Report {
+    fn default() -> Self {
+        Report {
+            degenerate_triangles: 0,
+            first_degenerate_triangle: usize::MAX,
+            fallback_vertices: 0,
+            mirrored_vertices: 0,
+            unreferenced_vertices: 0,
+            inherited_vertices: 0,
+        }
+    }
+}
+
+impl Report {
+    /// Records triangle `t` as degenerate.
+    pub(crate) fn note_degenerate(&mut self, t: usize) {
+        self.degenerate_triangles += 1;
+        self.first_degenerate_triangle = self.first_degenerate_triangle.min(t);
+    }
+}
+
+/// Adds the per-vertex counts the flags hold: mirrored and unreferenced vertices.
+pub(crate) fn count_flags(flags: &[u8], report: &mut Report) {
+    use crate::scratch::flag;
+    for &f in flags {
+        report.unreferenced_vertices += usize::from(f & flag::REFERENCED == 0);
+        let both = flag::POSITIVE_UV | flag::NEGATIVE_UV;
+        report.mirrored_vertices += usize::from(f & both == both);
+    }
+}

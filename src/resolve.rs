@@ -1,0 +1,126 @@
+//! Per-vertex results for every policy but LEGACY: pick a handedness, Gram-Schmidt, or fall back.
+#![forbid(unsafe_code)]
+
+use glam::Vec3;
+
+use crate::frame::{fallback_tangent, normalize_careful, reject_normal, NO_NORMAL_TANGENT};
+use crate::scratch::VertexSums;
+
+/// A summed tangent whose component off the normal is below this share of the total weight that
+/// went into it is cancellation or rounding noise (mirror contributions meeting head-on, or a
+/// tangent parallel to the normal), not a measurement.
+const USABLE_SHARE: f32 = 1e-3;
+
+/// The outcome for one vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Resolved {
+    /// A measured unit tangent and its handedness.
+    Measured(Vec3, f32),
+    /// No usable tangent: the policy decides (inherit or fall back).
+    Missing,
+}
+
+/// The vertex normal scaled to unit length, or `None` when it is zero or not finite.
+#[inline(always)]
+pub fn unit_normal(raw: [f32; 3]) -> Option<Vec3> {
+    normalize_careful(Vec3::from_array(raw))
+}
+
+/// Keeps the handedness whose tangents sum longer (`primary`: right-handed, w = +1), removes the
+/// normal from it (`T' = T - (N.T)N`) and normalizes it, if what is left is usable.
+#[inline(always)]
+pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
+    let right = Vec3::from_array(sums.primary);
+    let left = Vec3::from_array(sums.secondary);
+    let (sum, w) = if right.length_squared() >= left.length_squared() {
+        (right, 1.0)
+    } else {
+        (left, -1.0)
+    };
+    let in_plane = match normal {
+        Some(n) => reject_normal(sum, n),
+        None => sum,
+    };
+    if !(in_plane.length() > USABLE_SHARE * sums.weight) {
+        return Resolved::Missing;
+    }
+    match normalize_careful(in_plane) {
+        Some(t) => Resolved::Measured(t, w),
+        None => Resolved::Missing,
+    }
+}
+
+/// The frame given to a vertex nothing measured: built from the normal alone, `w = +1`.
+#[inline(always)]
+pub fn fallback(normal: Option<Vec3>) -> (Vec3, f32) {
+    (normal.map_or(NO_NORMAL_TANGENT, fallback_tangent), 1.0)
+}
+
+use crate::inherit;
+use crate::mesh::{Mesh, Output};
+use crate::options::DegeneratePolicy;
+use crate::report::Report;
+use crate::scratch::{flag, Scratch};
+
+/// Writes every vertex's result for policies SKIP, INHERIT and REJECT and counts what it did.
+///
+/// Measured vertices are written in one pass. Under INHERIT the others wait for
+/// [`inherit::propagate`] and a second pass writes them; under SKIP (and REJECT, which reaches
+/// here only without degenerate triangles) they get the fallback frame at once.
+pub fn write_all(
+    mesh: &Mesh,
+    policy: DegeneratePolicy,
+    scratch: &mut Scratch,
+    output: &mut Output,
+    report: &mut Report,
+) {
+    let defer_missing = policy == DegeneratePolicy::Inherit && mesh.texcoords.is_some();
+    let mut deferred = 0usize;
+    for v in 0..mesh.vertex_count() {
+        let normal = unit_normal(mesh.normals.get(v));
+        match resolve(&scratch.sums[v], normal) {
+            Resolved::Measured(t, w) => {
+                write_vertex(output, v, t, w, normal);
+                scratch.sums[v].primary = t.to_array();
+                scratch.sums[v].weight = w;
+                scratch.flags[v] |= flag::RESOLVED;
+            }
+            Resolved::Missing if defer_missing => {
+                scratch.sums[v].secondary = [0.0; 3];
+                scratch.sums[v].weight = 0.0;
+                scratch.flags[v] |= flag::DEFERRED;
+                deferred += 1;
+            }
+            Resolved::Missing => {
+                let (t, w) = fallback(normal);
+                write_vertex(output, v, t, w, normal);
+                report.fallback_vertices += 1;
+            }
+        }
+    }
+    if deferred == 0 {
+        return;
+    }
+    report.inherited_vertices = inherit::propagate(mesh, scratch);
+    for v in 0..mesh.vertex_count() {
+        if scratch.flags[v] & flag::DEFERRED == 0 {
+            continue;
+        }
+        let normal = unit_normal(mesh.normals.get(v));
+        let (t, w) = if scratch.flags[v] & flag::RESOLVED != 0 {
+            (Vec3::from_array(scratch.sums[v].primary), scratch.sums[v].weight)
+        } else {
+            report.fallback_vertices += 1;
+            fallback(normal)
+        };
+        write_vertex(output, v, t, w, normal);
+    }
+}
+
+/// Writes `(t, w)` and the bitangent `w * cross(n, t)`; without a usable normal, any unit vector
+/// orthogonal to `t` stands in for `n`, so the bitangent is still a unit vector orthogonal to `t`.
+#[inline(always)]
+fn write_vertex(output: &mut Output, v: usize, t: Vec3, w: f32, normal: Option<Vec3>) {
+    let n = normal.unwrap_or_else(|| crate::frame::fallback_tangent(t));
+    output.write(v, t, w, n);
+}

@@ -1,0 +1,124 @@
+//! The working memory of one call: per-vertex sums and flags, from the caller or the heap.
+#![forbid(unsafe_code)]
+
+use core::mem::{align_of, size_of};
+
+use crate::status::Error;
+use crate::strided::pod_prefix_mut;
+
+/// Per-vertex running sums.
+///
+/// Policy LEGACY: `primary` is the listing's `tan1` (sum of dP/du) and `secondary` its `tan2`
+/// (sum of dP/dv). Other policies: `primary` sums the tangents of right-handed corners and
+/// `secondary` those of left-handed corners, `weight` the total weight of both; once a vertex is
+/// resolved, `primary` holds its unit tangent and `weight` its handedness.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VertexSums {
+    /// See the type's description.
+    pub primary: [f32; 3],
+    /// See the type's description.
+    pub weight: f32,
+    /// See the type's description.
+    pub secondary: [f32; 3],
+}
+
+/// Per-vertex flag bits.
+pub mod flag {
+    /// Some triangle uses the vertex.
+    pub(crate) const REFERENCED: u8 = 1;
+    /// A non-degenerate triangle with positive UV determinant uses the vertex.
+    pub(crate) const POSITIVE_UV: u8 = 2;
+    /// A non-degenerate triangle with negative UV determinant uses the vertex.
+    pub(crate) const NEGATIVE_UV: u8 = 4;
+    /// The vertex has its final tangent in `primary` (policy INHERIT).
+    pub(crate) const RESOLVED: u8 = 8;
+    /// The vertex waits for its neighbours (policy INHERIT) and is written after them.
+    pub(crate) const DEFERRED: u8 = 16;
+}
+
+/// Scratch bytes per vertex: one [`VertexSums`] and one flag byte.
+pub(crate) const BYTES_PER_VERTEX: usize = size_of::<VertexSums>() + 1;
+
+/// Bytes a call on `vertex_count` vertices needs: `vertex_count * 29 + 3` (the 3 let the sums start
+/// at a 4-byte boundary wherever the caller's bytes begin), 0 for an empty mesh. `None` on overflow.
+pub fn scratch_size(vertex_count: usize) -> Option<usize> {
+    if vertex_count == 0 {
+        return Some(0);
+    }
+    vertex_count
+        .checked_mul(BYTES_PER_VERTEX)?
+        .checked_add(align_of::<VertexSums>() - 1)
+}
+
+/// The per-vertex working arrays of one call.
+pub struct Scratch<'s> {
+    /// Running sums, one per vertex.
+    pub sums: &'s mut [VertexSums],
+    /// Flag bits, one byte per vertex.
+    pub flags: &'s mut [u8],
+}
+
+/// Heap storage for a call that brings no scratch.
+#[derive(Default)]
+pub struct OwnedScratch {
+    sums: Vec<VertexSums>,
+    flags: Vec<u8>,
+}
+
+impl OwnedScratch {
+    /// Allocates zeroed arrays for `vertex_count` vertices, failing with `OutOfMemory` rather than
+    /// aborting.
+    pub fn allocate(vertex_count: usize) -> Result<Self, Error> {
+        let mut owned = OwnedScratch::default();
+        owned
+            .sums
+            .try_reserve_exact(vertex_count)
+            .map_err(|_| Error::OutOfMemory)?;
+        owned
+            .flags
+            .try_reserve_exact(vertex_count)
+            .map_err(|_| Error::OutOfMemory)?;
+        owned.sums.resize(vertex_count, VertexSums::default());
+        owned.flags.resize(vertex_count, 0);
+        Ok(owned)
+    }
+
+    /// The arrays, borrowed for one call.
+    pub fn scratch(&mut self) -> Scratch<'_> {
+        Scratch {
+            sums: &mut self.sums,
+            flags: &mut self.flags,
+        }
+    }
+}
+
+/// Lays the arrays for `vertex_count` vertices out in caller memory and zeroes them.
+pub fn carve(bytes: &mut [u8], vertex_count: usize) -> Result<Scratch<'_>, Error> {
+    let (sums, rest) = pod_prefix_mut::<VertexSums>(bytes, vertex_count).ok_or(Error::ScratchTooSmall)?;
+    let flags = rest.get_mut(..vertex_count).ok_or(Error::ScratchTooSmall)?;
+    sums.fill(VertexSums::default());
+    flags.fill(0);
+    Ok(Scratch { sums, flags })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scratch_size_is_enough_at_every_alignment_and_one_byte_less_is_not() {
+        for vertex_count in [1usize, 2, 7, 100] {
+            let size = scratch_size(vertex_count).unwrap();
+            let mut buffer = vec![0u8; size + 8];
+            for offset in 0..4 {
+                assert!(carve(&mut buffer[offset..offset + size], vertex_count).is_ok());
+            }
+            // With the worst alignment, one byte less must fail.
+            let worst = (0..4).find(|o| (buffer[*o..].as_ptr() as usize) % 4 == 1).unwrap();
+            assert!(carve(&mut buffer[worst..worst + size - 1], vertex_count).is_err());
+        }
+        assert_eq!(scratch_size(0), Some(0));
+        assert_eq!(scratch_size(usize::MAX), None);
+    }
+}

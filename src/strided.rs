@@ -1,0 +1,379 @@
+//! Strided, unaligned views over memory the library does not own.
+//!
+//! Engines hand over interleaved vertex arrays and often want the tangent written into the same
+//! array the positions come from. A Rust reference over such memory could alias the output, so
+//! these views keep a raw base pointer and read or write each element with `read_unaligned` /
+//! `write_unaligned`: no reference to caller memory is ever formed. Every access is bounds-checked
+//! against the element count the view was built with, which is what makes `get`/`set` safe.
+
+use core::marker::PhantomData;
+use core::mem::size_of;
+
+use crate::status::Error;
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// Plain data a view can read or write: every bit pattern is a valid value.
+pub trait Element: Copy + sealed::Sealed {}
+impl sealed::Sealed for [f32; 2] {}
+impl sealed::Sealed for [f32; 3] {}
+impl sealed::Sealed for [f32; 4] {}
+impl sealed::Sealed for u16 {}
+impl sealed::Sealed for u32 {}
+impl Element for [f32; 2] {}
+impl Element for [f32; 3] {}
+impl Element for [f32; 4] {}
+impl Element for u16 {}
+impl Element for u32 {}
+
+/// The bytes a strided run of `count` elements of `size` bytes spans: `(count - 1) * stride + size`.
+///
+/// Fails with [`Error::InvalidStride`] when `stride < size` and [`Error::SizeOverflow`] when the
+/// span does not fit in `isize` (the most any allocation can hold).
+pub fn span_bytes(count: usize, stride: usize, size: usize) -> Result<usize, Error> {
+    if stride < size {
+        return Err(Error::InvalidStride);
+    }
+    if count == 0 {
+        return Ok(0);
+    }
+    let span = (count - 1)
+        .checked_mul(stride)
+        .and_then(|bytes| bytes.checked_add(size))
+        .ok_or(Error::SizeOverflow)?;
+    if span > isize::MAX as usize {
+        return Err(Error::SizeOverflow);
+    }
+    Ok(span)
+}
+
+/// The address range `[start, end)` a view covers, used to test buffers for overlap.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Footprint {
+    /// Address of element 0.
+    pub start: usize,
+    /// Distance between elements, in bytes.
+    pub stride: usize,
+    /// Bytes of each element that belong to the view.
+    pub size: usize,
+    /// Number of elements.
+    pub count: usize,
+}
+
+impl Footprint {
+    /// One past the last byte of the last element.
+    fn end(&self) -> usize {
+        self.start + (self.count - 1) * self.stride + self.size
+    }
+
+    /// True when some byte belongs to both footprints (not merely to both address ranges:
+    /// a tangent interleaved between positions shares the range but no byte).
+    pub fn overlaps(&self, other: &Footprint) -> bool {
+        if self.count == 0 || other.count == 0 || self.size == 0 || other.size == 0 {
+            return false;
+        }
+        if self.end() <= other.start || other.end() <= self.start {
+            return false;
+        }
+        if self.stride == other.stride {
+            return self.overlaps_same_stride(other);
+        }
+        self.overlaps_by_walk(other)
+    }
+
+    /// Equal strides: element `i` of `self` meets element `j` of `other` iff
+    /// `-other.size < d + k * stride < self.size` with `d = other.start - self.start`, `k = j - i`.
+    /// Only the `k` nearest `-d / stride` can satisfy that, since both sizes are at most `stride`.
+    fn overlaps_same_stride(&self, other: &Footprint) -> bool {
+        let stride = self.stride as i128;
+        let d = other.start as i128 - self.start as i128;
+        let k_lo = -(self.count as i128 - 1);
+        let k_hi = other.count as i128 - 1;
+        let k_near = (-d).div_euclid(stride);
+        (k_near - 1..=k_near + 1)
+            .filter(|k| (k_lo..=k_hi).contains(k))
+            .any(|k| {
+                let offset = d + k * stride;
+                -(other.size as i128) < offset && offset < self.size as i128
+            })
+    }
+
+    /// Different strides: walk both element sequences in address order (a merge), which is exact
+    /// and linear in the elements inside the shared address range.
+    fn overlaps_by_walk(&self, other: &Footprint) -> bool {
+        let (mut i, mut j) = (0usize, 0usize);
+        while i < self.count && j < other.count {
+            let a = self.start + i * self.stride;
+            let b = other.start + j * other.stride;
+            if a < b + other.size && b < a + self.size {
+                return true;
+            }
+            if a + self.size <= b {
+                i += 1;
+            } else {
+                j += 1;
+            }
+        }
+        false
+    }
+}
+
+/// A read-only strided view of `len` elements of type `T`.
+#[derive(Clone, Copy)]
+pub struct Strided<'a, T: Element> {
+    base: *const u8,
+    stride: usize,
+    len: usize,
+    _borrow: PhantomData<&'a [T]>,
+}
+
+impl<'a, T: Element> Strided<'a, T> {
+    /// A view of `len` elements, `stride` bytes apart, the first at `bytes[0]`; `T` sits in the
+    /// first `size_of::<T>()` bytes of each element.
+    pub fn from_bytes(bytes: &'a [u8], stride: usize, len: usize) -> Result<Self, Error> {
+        let span = span_bytes(len, stride, size_of::<T>())?;
+        if bytes.len() < span {
+            return Err(Error::SizeOverflow);
+        }
+        Ok(Strided {
+            base: bytes.as_ptr(),
+            stride,
+            len,
+            _borrow: PhantomData,
+        })
+    }
+
+    /// A view of a packed slice.
+    pub fn from_slice(items: &'a [T]) -> Self {
+        Strided {
+            base: items.as_ptr().cast(),
+            stride: size_of::<T>(),
+            len: items.len(),
+            _borrow: PhantomData,
+        }
+    }
+
+    /// A view of caller memory.
+    ///
+    /// # Safety
+    /// When `len > 0`, `base` must be valid for reads of `span_bytes(len, stride, size_of::<T>())`
+    /// bytes for `'a`, `stride >= size_of::<T>()`, and no element may be written through another
+    /// pointer while the view is read. Alignment is not required.
+    pub unsafe fn from_raw(base: *const u8, stride: usize, len: usize) -> Self {
+        Strided {
+            base,
+            stride,
+            len,
+            _borrow: PhantomData,
+        }
+    }
+
+    /// Number of elements.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when the view has no elements.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Element `i`. Panics when `i >= len` (callers check indices first).
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> T {
+        assert!(i < self.len, "strided read out of bounds");
+        // SAFETY: i < len and the constructor's contract covers every element below len.
+        unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() }
+    }
+
+    /// Where the view's bytes are, for overlap tests.
+    pub fn footprint(&self) -> Footprint {
+        Footprint {
+            start: self.base as usize,
+            stride: self.stride,
+            size: size_of::<T>(),
+            count: self.len,
+        }
+    }
+}
+
+/// A write-only strided view of `len` elements of type `T`.
+pub struct StridedMut<'a, T: Element> {
+    base: *mut u8,
+    stride: usize,
+    len: usize,
+    _borrow: PhantomData<&'a mut [T]>,
+}
+
+impl<'a, T: Element> StridedMut<'a, T> {
+    /// A view of `len` elements, `stride` bytes apart, the first at `bytes[0]`.
+    pub fn from_bytes(bytes: &'a mut [u8], stride: usize, len: usize) -> Result<Self, Error> {
+        let span = span_bytes(len, stride, size_of::<T>())?;
+        if bytes.len() < span {
+            return Err(Error::SizeOverflow);
+        }
+        Ok(StridedMut {
+            base: bytes.as_mut_ptr(),
+            stride,
+            len,
+            _borrow: PhantomData,
+        })
+    }
+
+    /// A view of a packed slice.
+    pub fn from_slice(items: &'a mut [T]) -> Self {
+        StridedMut {
+            base: items.as_mut_ptr().cast(),
+            stride: size_of::<T>(),
+            len: items.len(),
+            _borrow: PhantomData,
+        }
+    }
+
+    /// A view of caller memory.
+    ///
+    /// # Safety
+    /// When `len > 0`, `base` must be valid for writes of `span_bytes(len, stride, size_of::<T>())`
+    /// bytes for `'a`, `stride >= size_of::<T>()`, and the element bytes must not be read or written
+    /// through another pointer while the view lives. Alignment is not required.
+    pub unsafe fn from_raw(base: *mut u8, stride: usize, len: usize) -> Self {
+        StridedMut {
+            base,
+            stride,
+            len,
+            _borrow: PhantomData,
+        }
+    }
+
+    /// Number of elements.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when the view has no elements.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Writes element `i`. Panics when `i >= len`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, value: T) {
+        assert!(i < self.len, "strided write out of bounds");
+        // SAFETY: i < len and the constructor's contract covers every element below len.
+        unsafe { self.base.add(i * self.stride).cast::<T>().write_unaligned(value) }
+    }
+
+    /// Where the view's bytes are, for overlap tests.
+    pub fn footprint(&self) -> Footprint {
+        Footprint {
+            start: self.base as usize,
+            stride: self.stride,
+            size: size_of::<T>(),
+            count: self.len,
+        }
+    }
+}
+
+/// Types for which every byte pattern of their size is a valid value.
+///
+/// # Safety
+/// Implementors must be `repr(C)` or primitive, hold only `f32`/integers, and have no padding.
+pub unsafe trait Pod: Copy {}
+// SAFETY: three f32 + one f32 + three f32, repr(C), no padding.
+unsafe impl Pod for crate::scratch::VertexSums {}
+
+/// The first `count` elements of type `T` that fit in `bytes` after its first `T`-aligned address,
+/// and the bytes after them; `None` when they do not fit.
+///
+/// Lets caller-provided scratch serve as typed working memory without copying. The bytes before the
+/// aligned address are left unused; `scratch_size` budgets `align_of::<T>() - 1` bytes for them.
+pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T], &mut [u8])> {
+    let head = bytes.as_ptr().align_offset(core::mem::align_of::<T>());
+    let typed_bytes = count.checked_mul(size_of::<T>())?;
+    if head.checked_add(typed_bytes)? > bytes.len() {
+        return None;
+    }
+    let (typed, rest) = bytes[head..].split_at_mut(typed_bytes);
+    // SAFETY: `typed` starts T-aligned and holds exactly `count * size_of::<T>()` bytes that this
+    // exclusive borrow owns; T is Pod, so whatever the bytes hold is a valid T.
+    let typed = unsafe { core::slice::from_raw_parts_mut(typed.as_mut_ptr().cast::<T>(), count) };
+    Some((typed, rest))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fp(start: usize, stride: usize, size: usize, count: usize) -> Footprint {
+        Footprint {
+            start,
+            stride,
+            size,
+            count,
+        }
+    }
+
+    /// Brute force: the byte sets of both footprints.
+    fn overlaps_brute(a: &Footprint, b: &Footprint) -> bool {
+        let bytes = |f: &Footprint| {
+            (0..f.count)
+                .flat_map(|i| (0..f.size).map(move |k| f.start + i * f.stride + k))
+                .collect::<std::collections::HashSet<_>>()
+        };
+        !bytes(a).is_disjoint(&bytes(b))
+    }
+
+    #[test]
+    fn interleaved_fields_do_not_overlap_but_shared_bytes_do() {
+        let positions = fp(1000, 48, 12, 10);
+        let tangent_after = fp(1012, 48, 16, 10);
+        let tangent_on_top = fp(1008, 48, 16, 10);
+        assert!(!positions.overlaps(&tangent_after));
+        assert!(positions.overlaps(&tangent_on_top));
+    }
+
+    #[test]
+    fn overlap_test_matches_brute_force() {
+        for a_start in 0..12 {
+            for (a_stride, a_size) in [(4, 4), (8, 4), (12, 8), (7, 3)] {
+                for b_start in 0..24 {
+                    for (b_stride, b_size) in [(4, 4), (8, 4), (12, 8), (5, 2), (7, 3)] {
+                        for (a_count, b_count) in [(1, 1), (3, 2), (4, 6)] {
+                            let a = fp(a_start, a_stride, a_size, a_count);
+                            let b = fp(b_start, b_stride, b_size, b_count);
+                            assert_eq!(a.overlaps(&b), overlaps_brute(&a, &b), "{a:?} {b:?}");
+                            assert_eq!(b.overlaps(&a), overlaps_brute(&a, &b), "{b:?} {a:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn span_rejects_short_strides_and_overflow() {
+        assert_eq!(span_bytes(3, 8, 12), Err(Error::InvalidStride));
+        assert_eq!(span_bytes(usize::MAX, 16, 12), Err(Error::SizeOverflow));
+        assert_eq!(span_bytes(0, 16, 12), Ok(0));
+        assert_eq!(span_bytes(3, 16, 12), Ok(44));
+    }
+
+    #[test]
+    fn unaligned_reads_and_writes_round_trip() {
+        let mut bytes = vec![0u8; 64];
+        {
+            let mut out = StridedMut::<[f32; 3]>::from_bytes(&mut bytes[1..], 17, 3).unwrap();
+            for i in 0..3 {
+                out.set(i, [i as f32, 1.5, -2.0]);
+            }
+        }
+        let view = Strided::<[f32; 3]>::from_bytes(&bytes[1..], 17, 3).unwrap();
+        assert_eq!(view.get(2), [2.0, 1.5, -2.0]);
+    }
+}
