@@ -31,6 +31,16 @@
 // `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
 #define TBASIS_METHOD_LENGYEL 1
 
+// `method`: each triangle's tangent projected into the vertex's tangent plane, normalized and
+// weighted by the corner angle (MikkTSpace's weighting).
+#define TBASIS_METHOD_ANGLE 2
+
+// `method`: unit face tangents weighted by triangle area.
+#define TBASIS_METHOD_AREA 3
+
+// `method`: unit face tangents with equal weights (per-face averaging).
+#define TBASIS_METHOD_UNIFORM 4
+
 // `degenerate_policy`: exactly the listing, bit for bit, including its inf/NaN.
 #define TBASIS_DEGENERATE_LEGACY 1
 
@@ -128,6 +138,9 @@ typedef struct tbasis_report {
   size_t unreferenced_vertices;
   // Vertices that took their tangent from neighbours (policy INHERIT).
   size_t inherited_vertices;
+  // Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (normalized,
+  // or ignored when it has no direction). Not counted by policy LEGACY.
+  size_t abnormal_normals;
 } tbasis_report;
 
 // Success.

@@ -66,6 +66,13 @@ pub const TBASIS_INDEX_U32: u32 = 2;
 
 /// `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
 pub const TBASIS_METHOD_LENGYEL: u32 = 1;
+/// `method`: each triangle's tangent projected into the vertex's tangent plane, normalized and
+/// weighted by the corner angle (MikkTSpace's weighting).
+pub const TBASIS_METHOD_ANGLE: u32 = 2;
+/// `method`: unit face tangents weighted by triangle area.
+pub const TBASIS_METHOD_AREA: u32 = 3;
+/// `method`: unit face tangents with equal weights (per-face averaging).
+pub const TBASIS_METHOD_UNIFORM: u32 = 4;
 
 /// `degenerate_policy`: exactly the listing, bit for bit, including its inf/NaN.
 pub const TBASIS_DEGENERATE_LEGACY: u32 = 1;
@@ -166,6 +173,9 @@ pub struct tbasis_report {
     pub unreferenced_vertices: usize,
     /// Vertices that took their tangent from neighbours (policy INHERIT).
     pub inherited_vertices: usize,
+    /// Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (normalized,
+    /// or ignored when it has no direction). Not counted by policy LEGACY.
+    pub abnormal_normals: usize,
 }
 
 impl From<Report> for tbasis_report {
@@ -177,6 +187,7 @@ impl From<Report> for tbasis_report {
             mirrored_vertices: r.mirrored_vertices,
             unreferenced_vertices: r.unreferenced_vertices,
             inherited_vertices: r.inherited_vertices,
+            abnormal_normals: r.abnormal_normals,
         }
     }
 }

@@ -67,7 +67,8 @@ fn settle_ring(mesh: &Mesh, scratch: &mut Scratch) -> usize {
             None => gathered,
         };
         // Neighbours' tangents are unit vectors: a remainder below 1e-3 of one is cancellation.
-        if !(in_plane.length() > 1e-3) {
+        let usable = in_plane.length() > 1e-3;
+        if !usable {
             continue;
         }
         if let Some(tangent) = normalize_careful(in_plane) {

@@ -9,6 +9,13 @@ use crate::status::Error;
 pub enum Method {
     /// The original listing: each triangle adds its unnormalized dP/du and dP/dv (Lengyel 2001).
     Lengyel = 1,
+    /// Each triangle's tangent, projected into the vertex's tangent plane and normalized, weighted
+    /// by the triangle's corner angle at the vertex (the weighting MikkTSpace uses).
+    Angle = 2,
+    /// Unit face tangents weighted by triangle area.
+    Area = 3,
+    /// Unit face tangents with equal weights (per-face averaging).
+    Uniform = 4,
 }
 
 impl Method {
@@ -20,6 +27,9 @@ impl Method {
         match code {
             0 => Ok(Method::DEFAULT),
             1 => Ok(Method::Lengyel),
+            2 => Ok(Method::Angle),
+            3 => Ok(Method::Area),
+            4 => Ok(Method::Uniform),
             _ => Err(Error::UnknownMethod),
         }
     }

@@ -17,6 +17,9 @@ pub struct Report {
     pub unreferenced_vertices: usize,
     /// Vertices that took their tangent from neighbours (policy INHERIT).
     pub inherited_vertices: usize,
+    /// Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (it was
+    /// normalized, or, when it has no direction, ignored). Not counted by policy LEGACY.
+    pub abnormal_normals: usize,
 }
 
 impl Default for Report {
@@ -28,6 +31,7 @@ impl Default for Report {
             mirrored_vertices: 0,
             unreferenced_vertices: 0,
             inherited_vertices: 0,
+            abnormal_normals: 0,
         }
     }
 }

@@ -26,6 +26,12 @@ pub fn unit_normal(raw: [f32; 3]) -> Option<Vec3> {
     normalize_careful(Vec3::from_array(raw))
 }
 
+/// True when `n` is finite and its length is 1 within 1e-3.
+#[inline(always)]
+fn is_unit(n: [f32; 3]) -> bool {
+    (Vec3::from_array(n).length_squared() - 1.0).abs() <= 2e-3
+}
+
 /// Keeps the handedness whose tangents sum longer (`primary`: right-handed, w = +1), removes the
 /// normal from it (`T' = T - (N.T)N`) and normalizes it, if what is left is usable.
 #[inline(always)]
@@ -41,7 +47,8 @@ pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
         Some(n) => reject_normal(sum, n),
         None => sum,
     };
-    if !(in_plane.length() > USABLE_SHARE * sums.weight) {
+    let usable = in_plane.length() > USABLE_SHARE * sums.weight;
+    if !usable {
         return Resolved::Missing;
     }
     match normalize_careful(in_plane) {
@@ -77,7 +84,9 @@ pub fn write_all(
     let defer_missing = policy == DegeneratePolicy::Inherit && mesh.texcoords.is_some();
     let mut deferred = 0usize;
     for v in 0..mesh.vertex_count() {
-        let normal = unit_normal(mesh.normals.get(v));
+        let raw_normal = mesh.normals.get(v);
+        report.abnormal_normals += usize::from(!is_unit(raw_normal));
+        let normal = unit_normal(raw_normal);
         match resolve(&scratch.sums[v], normal) {
             Resolved::Measured(t, w) => {
                 write_vertex(output, v, t, w, normal);
