@@ -83,7 +83,7 @@ typedef struct tbasis_mesh {
   // `index_count` packed indices of `index_type`; NULL: unindexed, triangle `i` is vertices
   // `3i, 3i+1, 3i+2`.
   const void *indices;
-  // Number of indices, a multiple of 3 (ignored when `indices` is NULL).
+  // Number of indices, a multiple of 3; must be 0 when `indices` is NULL.
   size_t index_count;
   // `TBASIS_INDEX_U16` or `TBASIS_INDEX_U32` (ignored when `indices` is NULL).
   uint32_t index_type;

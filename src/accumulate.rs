@@ -5,6 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::degenerate::{confidence, position_quality, uv_quality};
+use crate::frame::{careful_length, normalize_careful};
 use crate::mesh::Mesh;
 use crate::options::{Method, Options};
 use crate::report::Report;
@@ -14,8 +15,11 @@ use crate::strided::Strided;
 
 /// What one non-degenerate triangle contributes.
 struct FaceTangent {
-    /// dP/du, unnormalized (Lengyel 2001).
-    tangent: Vec3,
+    /// Direction of dP/du, unit length.
+    direction: Vec3,
+    /// `|dP/du|`, kept apart from the direction so that neither overflows at extreme UV scales
+    /// (UVs of 1e-20 give a length near 1e20, whose square no f32 holds).
+    length: f32,
     /// Unnormalized face normal `Q1 x Q2`, the orientation the winding gives; its length is twice
     /// the area.
     face_normal: Vec3,
@@ -47,10 +51,14 @@ fn face_tangent(p: &[Vec3; 3], uv: [Vec2; 3], v_sign: f32, threshold: f32) -> Op
     let scale = e1.abs().max(e2.abs()).max_element();
     let (e1, e2) = (e1 / scale, e2 / scale);
     let det = e1.perp_dot(e2);
-    let tangent = (q1 * e2.y - q2 * e1.y) / (det * scale);
+    // T = (t2 Q1 - t1 Q2) / det, with the UV edges scaled: det' = det / scale^2.
+    let numerator = q1 * e2.y - q2 * e1.y;
+    let direction = normalize_careful(numerator)? * det.signum();
+    let length = careful_length(numerator) / (det.abs() * scale);
     let face_normal = q1.cross(q2);
-    (tangent.is_finite() && face_normal.is_finite()).then_some(FaceTangent {
-        tangent,
+    (length.is_finite() && face_normal.is_finite()).then_some(FaceTangent {
+        direction,
+        length,
         face_normal,
         positive_uv: det > 0.0,
         confidence: confidence(uv_q),
@@ -75,22 +83,22 @@ fn corner_angle(p: &[Vec3; 3], k: usize, twice_area: f32) -> f32 {
 #[inline(always)]
 fn corner_contribution(method: Method, face: &FaceTangent, p: &[Vec3; 3], k: usize, normal: Vec3) -> (Vec3, f32) {
     let (tangent, weight) = match method {
-        Method::Lengyel => return (face.tangent * face.confidence, face.tangent.length() * face.confidence),
+        Method::Lengyel => (face.direction, face.length),
         Method::Angle => {
             // T - N (N.T) / (N.N): the projection needs no unit normal, so no square root here.
             let n_squared = normal.length_squared();
             let projected = if n_squared > 0.0 && n_squared.is_finite() {
-                face.tangent - normal * (normal.dot(face.tangent) / n_squared)
+                face.direction - normal * (normal.dot(face.direction) / n_squared)
             } else {
-                face.tangent
+                face.direction
             };
             (
                 projected.normalize_or_zero(),
                 corner_angle(p, k, face.face_normal.length()),
             )
         }
-        Method::Area => (face.tangent.normalize_or_zero(), 0.5 * face.face_normal.length()),
-        Method::Uniform => (face.tangent.normalize_or_zero(), 1.0),
+        Method::Area => (face.direction, 0.5 * face.face_normal.length()),
+        Method::Uniform => (face.direction, 1.0),
     };
     let weight = weight * face.confidence;
     (tangent * weight, weight)
@@ -122,7 +130,10 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch, report:
         for (k, &v) in corners.iter().enumerate() {
             let normal = Vec3::from_array(mesh.normals.get(v));
             let (contribution, weight) = corner_contribution(options.method, &face, &p, k, normal);
-            let right_handed = face.positive_uv != (normal.dot(face.face_normal) < 0.0);
+            // A normal facing away from the winding turns the frame's handedness; a non-finite
+            // normal says nothing about it.
+            let facing_away = normal.is_finite() && normal.dot(face.face_normal) < 0.0;
+            let right_handed = face.positive_uv != facing_away;
             let sums = &mut scratch.sums[v];
             let side = if right_handed {
                 &mut sums.primary

@@ -112,7 +112,7 @@ pub struct tbasis_mesh {
     /// `index_count` packed indices of `index_type`; NULL: unindexed, triangle `i` is vertices
     /// `3i, 3i+1, 3i+2`.
     pub indices: *const c_void,
-    /// Number of indices, a multiple of 3 (ignored when `indices` is NULL).
+    /// Number of indices, a multiple of 3; must be 0 when `indices` is NULL.
     pub index_count: usize,
     /// `TBASIS_INDEX_U16` or `TBASIS_INDEX_U32` (ignored when `indices` is NULL).
     pub index_type: u32,

@@ -9,6 +9,18 @@ pub fn reject_normal(tangent: Vec3, unit_normal: Vec3) -> Vec3 {
     tangent - unit_normal * unit_normal.dot(tangent)
 }
 
+/// `|v|` without overflow or underflow: scaled by the largest component first, so lengths near
+/// 1e20 (whose square overflows f32) or 1e-30 (whose square underflows) come out right.
+#[inline]
+pub fn careful_length(v: Vec3) -> f32 {
+    let largest = v.abs().max_element();
+    if largest > 0.0 && largest.is_finite() {
+        largest * (v / largest).length()
+    } else {
+        largest
+    }
+}
+
 /// `v / |v|`, or `None` when `v` is zero or not finite.
 ///
 /// Divides by the largest component first so that lengths near the float limits (UVs scaled by
@@ -34,6 +46,20 @@ pub fn fallback_tangent(n: Vec3) -> Vec3 {
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
     Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x)
+}
+
+/// `in_plane` (already rid of most of the normal) as a unit vector orthogonal to `normal`.
+///
+/// Removing the normal once in f32 leaves an error of about float precision divided by the share
+/// of the sum that lay in the plane, which for a sum nearly along the normal exceeds 1e-5; a
+/// second rejection after normalizing brings it to rounding level ("twice is enough").
+#[inline]
+pub fn finish_tangent(in_plane: Vec3, normal: Option<Vec3>) -> Option<Vec3> {
+    let once = normalize_careful(in_plane)?;
+    match normal {
+        Some(n) => normalize_careful(reject_normal(once, n)),
+        None => Some(once),
+    }
 }
 
 /// The tangent for a vertex whose normal is unusable (zero or not finite): the x axis.
@@ -76,5 +102,9 @@ mod tests {
         assert_eq!(normalize_careful(Vec3::ZERO), None);
         assert_eq!(normalize_careful(Vec3::new(f32::NAN, 0.0, 1.0)), None);
         assert_eq!(normalize_careful(Vec3::new(f32::INFINITY, 0.0, 1.0)), None);
+        for scale in [1e-30f32, 1e20, 1e30] {
+            let length = careful_length(Vec3::new(3.0, 4.0, 0.0) * scale);
+            assert!((length / (5.0 * scale) - 1.0).abs() < 1e-6, "{scale}: {length}");
+        }
     }
 }

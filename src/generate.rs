@@ -85,6 +85,7 @@ pub fn generate_into(
 
     // 4. REJECT refuses the mesh before anything is written, naming the first bad triangle.
     if options.degenerate_policy == DegeneratePolicy::Reject && found.degenerate_triangles > 0 {
+        found.abnormal_normals = resolve::count_abnormal_normals(mesh);
         *report = found;
         return Err(Error::DegenerateUv);
     }

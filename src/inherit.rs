@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::frame::{normalize_careful, reject_normal};
+use crate::frame::{finish_tangent, reject_normal};
 use crate::mesh::Mesh;
 use crate::resolve::unit_normal;
 use crate::scratch::{flag, Scratch};
@@ -62,7 +62,8 @@ fn settle_ring(mesh: &Mesh, scratch: &mut Scratch) -> usize {
         let vote = sums.weight;
         sums.secondary = [0.0; 3];
         sums.weight = 0.0;
-        let in_plane = match unit_normal(mesh.normals.get(v)) {
+        let normal = unit_normal(mesh.normals.get(v));
+        let in_plane = match normal {
             Some(n) => reject_normal(gathered, n),
             None => gathered,
         };
@@ -71,7 +72,7 @@ fn settle_ring(mesh: &Mesh, scratch: &mut Scratch) -> usize {
         if !usable {
             continue;
         }
-        if let Some(tangent) = normalize_careful(in_plane) {
+        if let Some(tangent) = finish_tangent(in_plane, normal) {
             sums.primary = tangent.to_array();
             sums.weight = if vote < 0.0 { -1.0 } else { 1.0 };
             scratch.flags[v] |= flag::RESOLVED;

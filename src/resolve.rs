@@ -3,7 +3,9 @@
 
 use glam::Vec3;
 
-use crate::frame::{fallback_tangent, normalize_careful, reject_normal, NO_NORMAL_TANGENT};
+use crate::frame::{
+    careful_length, fallback_tangent, finish_tangent, normalize_careful, reject_normal, NO_NORMAL_TANGENT,
+};
 use crate::scratch::VertexSums;
 
 /// A summed tangent whose component off the normal is below this share of the total weight that
@@ -29,7 +31,14 @@ pub fn unit_normal(raw: [f32; 3]) -> Option<Vec3> {
 /// True when `n` is finite and its length is 1 within 1e-3.
 #[inline(always)]
 fn is_unit(n: [f32; 3]) -> bool {
-    (Vec3::from_array(n).length_squared() - 1.0).abs() <= 2e-3
+    (Vec3::from_array(n).length() - 1.0).abs() <= 1e-3
+}
+
+/// Number of vertices whose normal is not unit length within 1e-3 (zero and non-finite included).
+pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
+    (0..mesh.vertex_count())
+        .filter(|&v| !is_unit(mesh.normals.get(v)))
+        .count()
 }
 
 /// Keeps the handedness whose tangents sum longer (`primary`: right-handed, w = +1), removes the
@@ -47,11 +56,11 @@ pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
         Some(n) => reject_normal(sum, n),
         None => sum,
     };
-    let usable = in_plane.length() > USABLE_SHARE * sums.weight;
+    let usable = careful_length(in_plane) > USABLE_SHARE * sums.weight;
     if !usable {
         return Resolved::Missing;
     }
-    match normalize_careful(in_plane) {
+    match finish_tangent(in_plane, normal) {
         Some(t) => Resolved::Measured(t, w),
         None => Resolved::Missing,
     }

@@ -294,6 +294,10 @@ unsafe impl Pod for crate::scratch::VertexSums {}
 /// Lets caller-provided scratch serve as typed working memory without copying. The bytes before the
 /// aligned address are left unused; `scratch_size` budgets `align_of::<T>() - 1` bytes for them.
 pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T], &mut [u8])> {
+    if count == 0 {
+        // Nothing to align: an empty scratch fits at any address.
+        return Some((&mut [], bytes));
+    }
     let head = bytes.as_ptr().align_offset(core::mem::align_of::<T>());
     let typed_bytes = count.checked_mul(size_of::<T>())?;
     if head.checked_add(typed_bytes)? > bytes.len() {
@@ -366,7 +370,7 @@ mod tests {
 
     #[test]
     fn unaligned_reads_and_writes_round_trip() {
-        let mut bytes = vec![0u8; 64];
+        let mut bytes = [0u8; 64];
         {
             let mut out = StridedMut::<[f32; 3]>::from_bytes(&mut bytes[1..], 17, 3).unwrap();
             for i in 0..3 {

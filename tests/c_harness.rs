@@ -1,0 +1,291 @@
+//! Builds the C harness (`c_tests/`) against the library cargo just built and runs it: plain,
+//! under AddressSanitizer + UndefinedBehaviorSanitizer, and under valgrind. Also compiles the
+//! header as strict C99 and C++11 and checks what the shared library exports.
+//!
+//! Tools that are missing skip their test with a message, except when `CI` is set: CI installs
+//! them, so there a missing tool fails the test.
+#![cfg(target_os = "linux")]
+
+#[path = "common/mod.rs"]
+mod common;
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
+const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off"];
+const SANITIZE_FLAGS: [&str; 4] = [
+    "-fsanitize=address,undefined",
+    "-fno-sanitize-recover=all",
+    "-g",
+    "-fno-omit-frame-pointer",
+];
+
+/// `target/<profile>/`, where cargo puts `libtbasis.so` and `libtbasis.a`; this test binary runs
+/// from `target/<profile>/deps/`.
+fn library_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("path of the test executable");
+    exe.parent()
+        .and_then(Path::parent)
+        .expect("the test executable lives in target/<profile>/deps/")
+        .to_path_buf()
+}
+
+/// An empty directory under the target dir for one test's build products.
+fn work_dir(test: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_harness").join(test);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create the build directory");
+    dir
+}
+
+/// Integration tests get no `TARGET` variable; this file only runs on Linux, so build the triple.
+fn target_triple() -> String {
+    let env = if cfg!(target_env = "musl") { "musl" } else { "gnu" };
+    format!("{}-unknown-linux-{env}", std::env::consts::ARCH)
+}
+
+/// The C (or C++) compiler `cc` chooses for this target, at -O2.
+fn compiler(cpp: bool, out_dir: &Path) -> Command {
+    let triple = target_triple();
+    cc::Build::new()
+        .cpp(cpp)
+        .target(&triple)
+        .host(&triple)
+        .opt_level(2)
+        .cargo_metadata(false)
+        .out_dir(out_dir)
+        .get_compiler()
+        .to_command()
+}
+
+/// A missing tool: fail under CI, else say why the test is skipped.
+fn missing(what: &str) {
+    if std::env::var_os("CI").is_some() {
+        panic!("{what} is missing; CI must install it");
+    }
+    eprintln!("skipping: {what} is missing (this test fails instead when CI is set)");
+}
+
+/// Runs `command`, printing its output; panics with `what` if it cannot start.
+fn run(mut command: Command, what: &str) -> Output {
+    let output = command
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot run {command:?}: {e}"));
+    print!("{}", String::from_utf8_lossy(&output.stdout));
+    eprint!("{}", String::from_utf8_lossy(&output.stderr));
+    output
+}
+
+fn run_ok(command: Command, what: &str) {
+    let output = run(command, what);
+    assert!(output.status.success(), "{what} failed: {}", output.status);
+}
+
+fn c_sources() -> Vec<PathBuf> {
+    let dir = Path::new(CRATE_DIR).join("c_tests");
+    let mut sources: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("c_tests/")
+        .map(|entry| entry.expect("c_tests/ entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "c"))
+        .collect();
+    sources.sort();
+    sources
+}
+
+/// Compiles the harness: linked to `libtbasis.so` (found through an rpath), or, sanitized, to
+/// `libtbasis.a` so the sanitizer runtime is the first thing in the executable.
+fn build_harness(dir: &Path, sanitized: bool) -> PathBuf {
+    let exe = dir.join("harness");
+    let lib = library_dir();
+    let mut command = compiler(false, dir);
+    command
+        .args(c_sources())
+        .arg("-I")
+        .arg(Path::new(CRATE_DIR).join("include"));
+    command.args(C_FLAGS);
+    if sanitized {
+        command.args(SANITIZE_FLAGS).arg(lib.join("libtbasis.a"));
+        command.args(["-lpthread", "-ldl", "-lm"]);
+    } else {
+        command.arg("-L").arg(&lib).arg("-ltbasis").arg("-lm");
+        command.arg(format!("-Wl,-rpath,{}", lib.display()));
+    }
+    command.arg("-o").arg(&exe);
+    run_ok(command, "compiling the C harness");
+    exe
+}
+
+/// The stability cases, written where the harness can read them.
+fn case_file(dir: &Path) -> PathBuf {
+    let path = dir.join("cases.bin");
+    common::cases::write_case_file(&path, &common::cases::all_cases()).expect("write the case file");
+    path
+}
+
+/// Runs the harness (possibly wrapped) on the case file and requires its own verdict to be clean.
+/// `max_case_vertices` skips bigger stability cases (the harness's second argument).
+fn run_harness(mut command: Command, dir: &Path, max_case_vertices: Option<u64>) -> Output {
+    command.arg(case_file(dir));
+    command.args(max_case_vertices.map(|limit| limit.to_string()));
+    let output = run(command, "the C harness");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let summary = stdout.lines().rev().find_map(|line| {
+        let (passed, failed) = line.strip_suffix(" failed")?.split_once(" passed, ")?;
+        Some((passed.parse::<u64>().ok()?, failed.parse::<u64>().ok()?))
+    });
+    match summary {
+        Some((passed, 0)) if passed > 0 => {}
+        Some((_, failed)) => panic!("the C harness reports {failed} failed checks"),
+        None => panic!("the C harness stopped before its summary ({})", output.status),
+    }
+    assert!(output.status.success(), "the C harness exited with {}", output.status);
+    output
+}
+
+#[test]
+fn c_harness_passes() {
+    let dir = work_dir("plain");
+    let exe = build_harness(&dir, false);
+    run_harness(Command::new(exe), &dir, None);
+}
+
+/// Whether gcc's sanitizer runtimes are installed: a probe must compile, link and run.
+fn sanitizers_available(dir: &Path) -> bool {
+    let probe = dir.join("probe.c");
+    std::fs::write(&probe, "int main(void) { return 0; }\n").expect("write the probe");
+    let exe = dir.join("probe");
+    let mut command = compiler(false, dir);
+    command.args(SANITIZE_FLAGS).arg(&probe).arg("-o").arg(&exe);
+    command.output().is_ok_and(|o| o.status.success()) && Command::new(&exe).status().is_ok_and(|s| s.success())
+}
+
+#[test]
+fn c_harness_passes_under_asan_and_ubsan() {
+    let dir = work_dir("sanitized");
+    if !sanitizers_available(&dir) {
+        return missing("gcc's AddressSanitizer/UBSan runtime (Debian: libasan8, libubsan1)");
+    }
+    let exe = build_harness(&dir, true);
+    let mut command = Command::new(exe);
+    // The out-of-memory check asks for ~4e18 bytes and needs malloc to return NULL, not to abort.
+    command.env("ASAN_OPTIONS", "allocator_may_return_null=1:detect_leaks=1");
+    command.env("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1");
+    let output = run_harness(command, &dir, None);
+    // Reports, not the warning the refused allocation prints.
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let reports: Vec<&str> = stderr
+        .lines()
+        .filter(|line| {
+            line.contains("runtime error:")
+                || line.contains("SUMMARY: ")
+                || line.contains("ERROR: ") && line.contains("Sanitizer")
+        })
+        .collect();
+    assert!(reports.is_empty(), "sanitizer reports:\n{}", reports.join("\n"));
+}
+
+#[test]
+fn c_harness_passes_under_valgrind() {
+    if Command::new("valgrind").arg("--version").output().is_err() {
+        return missing("valgrind");
+    }
+    let dir = work_dir("valgrind");
+    let exe = build_harness(&dir, false);
+    let mut command = Command::new("valgrind");
+    command.args([
+        "--error-exitcode=99",
+        "--leak-check=full",
+        "--errors-for-leak-kinds=definite",
+    ]);
+    command.arg(exe);
+    // Under valgrind the debug library runs ~50 times slower: leave the largest stability cases
+    // to the plain and sanitized runs, which take every case.
+    run_harness(command, &dir, Some(20_000));
+}
+
+/// Uses every function and each kind of declaration, so compiling and linking it checks the
+/// header's declarations in both languages.
+const HEADER_PROBE: &str = r#"#include "tbasis.h"
+#include <string.h>
+
+int main(void)
+{
+    struct tbasis_mesh mesh;
+    tbasis_options options;
+    tbasis_output output;
+    tbasis_report report;
+    memset(&mesh, 0, sizeof mesh);
+    memset(&options, 0, sizeof options);
+    memset(&output, 0, sizeof output);
+    if (tbasis_version() != TBASIS_VERSION || tbasis_status_string(TBASIS_OK) == NULL)
+        return 1;
+    if (tbasis_scratch_size(&mesh, &options) != 0)
+        return 2;
+    if (tbasis_generate(&mesh, &options, NULL, &report) != TBASIS_ERROR_NULL_POINTER)
+        return 3;
+    if (tbasis_calculate_tangent_array(-1, NULL, NULL, NULL, 0, NULL, NULL) != TBASIS_ERROR_INVALID_COUNT)
+        return 4;
+    (void)output;
+    return TBASIS_INDEX_U16 + TBASIS_METHOD_LENGYEL + TBASIS_DEGENERATE_LEGACY + TBASIS_FLAG_FLIP_V == 4 ? 0 : 5;
+}
+"#;
+
+#[test]
+fn header_compiles_as_cpp() {
+    let dir = work_dir("header");
+    let lib = library_dir();
+    for (cpp, file, standard) in [(true, "probe.cpp", "-std=c++11"), (false, "probe.c", "-std=c99")] {
+        let source = dir.join(file);
+        std::fs::write(&source, HEADER_PROBE).expect("write the probe");
+        let exe = dir.join(format!("{file}.out"));
+        let mut command = compiler(cpp, &dir);
+        command.arg(standard).args(["-Wall", "-Wextra", "-Werror", "-pedantic"]);
+        command.arg("-I").arg(Path::new(CRATE_DIR).join("include")).arg(&source);
+        command.arg("-L").arg(&lib).arg("-ltbasis");
+        command.arg(format!("-Wl,-rpath,{}", lib.display())).arg("-o").arg(&exe);
+        run_ok(command, &format!("compiling the header as {standard}"));
+        run_ok(Command::new(&exe), &format!("the {standard} header probe"));
+    }
+}
+
+/// The functions the header declares (identifiers `tbasis_*` followed by `(` outside comments).
+fn header_functions() -> BTreeSet<String> {
+    let header = std::fs::read_to_string(Path::new(CRATE_DIR).join("include/tbasis.h")).expect("include/tbasis.h");
+    let mut names = BTreeSet::new();
+    for line in header.lines().filter(|line| !line.trim_start().starts_with("//")) {
+        for (start, _) in line.match_indices("tbasis_") {
+            let rest = &line[start..];
+            let end = rest
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            if rest[end..].starts_with('(') {
+                names.insert(rest[..end].to_string());
+            }
+        }
+    }
+    names
+}
+
+#[test]
+fn shared_library_exports_exactly_the_header_functions() {
+    let lib = library_dir().join("libtbasis.so");
+    let Ok(output) = Command::new("nm").args(["-D", "--defined-only"]).arg(&lib).output() else {
+        return missing("nm (Debian: binutils)");
+    };
+    assert!(output.status.success(), "nm -D {}: {}", lib.display(), output.status);
+    let exported: BTreeSet<String> = String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .filter_map(|line| line.split_whitespace().last())
+        .map(|name| name.split('@').next().unwrap_or(name).to_string())
+        .collect();
+    let declared = header_functions();
+    assert!(declared.len() >= 5, "found only {declared:?} in the header");
+    assert_eq!(
+        exported,
+        declared,
+        "dynamic symbols of {} vs the header's functions",
+        lib.display()
+    );
+}

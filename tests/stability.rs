@@ -1,0 +1,871 @@
+//! One test per failure class of tangent generation (collapsed or extreme UVs, degenerate or
+//! non-finite geometry, poles, mirror folds, odd topology), each under SKIP, INHERIT and REJECT:
+//! the shared invariants hold, REJECT refuses exactly the meshes with degenerate triangles and
+//! then writes nothing, and every report count equals what the mesh's construction implies.
+//!
+//! Every mesh here comes from `common::cases`, whose `all_cases()` the C harness runs as well.
+
+mod common;
+
+use common::cases::{self, Attribute, Case, BAD_VALUES, BAD_VERTEX, BAND_CYLINDER, BAND_ROWS};
+use common::invariants::{check_invariants, cross, dot, unit_normal};
+use common::shapes::{grid_index, tangent_at_u, uv_sphere, Poles};
+use tbasis::{generate_into, DegeneratePolicy as Policy, Error, Method, Options, Output, Report, StridedMut};
+
+/// What the outputs hold before a call; no valid output component can equal it.
+const UNTOUCHED: f32 = -7.5;
+
+/// One call's outcome and outputs.
+struct Run {
+    result: Result<(), Error>,
+    report: Report,
+    tangents: Vec<[f32; 4]>,
+    bitangents: Vec<[f32; 3]>,
+}
+
+impl Run {
+    fn untouched(&self) -> bool {
+        self.tangents
+            .iter()
+            .flatten()
+            .chain(self.bitangents.iter().flatten())
+            .all(|&x| x == UNTOUCHED)
+    }
+
+    fn tangent(&self, v: usize) -> [f32; 4] {
+        self.tangents[v]
+    }
+}
+
+fn run_with(case: &Case, options: &Options) -> Run {
+    let mut tangents = vec![[UNTOUCHED; 4]; case.vertex_count()];
+    let mut bitangents = vec![[UNTOUCHED; 3]; case.vertex_count()];
+    let mut report = Report::default();
+    let result = {
+        let mut output = Output {
+            tangents: StridedMut::from_slice(&mut tangents),
+            bitangents: Some(StridedMut::from_slice(&mut bitangents)),
+        };
+        generate_into(&case.mesh(), options, &mut output, None, &mut report)
+    };
+    Run {
+        result,
+        report,
+        tangents,
+        bitangents,
+    }
+}
+
+fn run(case: &Case, policy: Policy) -> Run {
+    run_with(
+        case,
+        &Options {
+            degenerate_policy: policy,
+            ..Options::default()
+        },
+    )
+}
+
+/// The frames the library builds from the normals alone: the same geometry without texture
+/// coordinates, where every vertex falls back.
+fn normal_only_frames(case: &Case) -> Vec<[f32; 4]> {
+    let bare = Case {
+        texcoords: None,
+        ..case.clone()
+    };
+    let run = run(&bare, Policy::Skip);
+    assert_eq!(run.result, Ok(()));
+    assert_eq!(run.report.fallback_vertices, case.vertex_count());
+    run.tangents
+}
+
+/// Report counts a mesh's construction implies.
+#[derive(Clone, Copy, Debug, Default)]
+struct Expected {
+    degenerate: usize,
+    first: Option<usize>,
+    mirrored: usize,
+    unreferenced: usize,
+    /// Normals zero, not finite or off unit length by more than 1e-3.
+    abnormal: usize,
+    /// Fallback vertices under SKIP (REJECT, when it accepts, gives the same).
+    skip_fallback: usize,
+    /// Fallback and inherited vertices under INHERIT.
+    inherit_fallback: usize,
+    inherited: usize,
+}
+
+impl Expected {
+    /// Degenerate triangles `count`, the first `first`, and `fallback` vertices with nothing to
+    /// inherit from (the same under SKIP and INHERIT).
+    fn degenerate(count: usize, first: usize, fallback: usize) -> Self {
+        Expected {
+            degenerate: count,
+            first: Some(first),
+            skip_fallback: fallback,
+            inherit_fallback: fallback,
+            ..Expected::default()
+        }
+    }
+
+    fn report(&self, policy: Policy) -> Report {
+        let (fallback_vertices, inherited_vertices) = match policy {
+            Policy::Skip => (self.skip_fallback, 0),
+            Policy::Inherit => (self.inherit_fallback, self.inherited),
+            // A refusal resolves nothing; an accepted mesh is resolved as SKIP resolves it.
+            Policy::Reject if self.degenerate > 0 => (0, 0),
+            Policy::Reject => (self.skip_fallback, 0),
+            Policy::Legacy => unreachable!("LEGACY is not checked against constructed counts"),
+        };
+        Report {
+            degenerate_triangles: self.degenerate,
+            first_degenerate_triangle: self.first.unwrap_or(usize::MAX),
+            fallback_vertices,
+            mirrored_vertices: self.mirrored,
+            unreferenced_vertices: self.unreferenced,
+            inherited_vertices,
+            abnormal_normals: self.abnormal,
+        }
+    }
+}
+
+/// Every method: report counts and invariants are properties of the mesh and the policy.
+const METHODS: [Method; 4] = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform];
+
+/// Runs SKIP, INHERIT and REJECT on `case` with every method: statuses, reports and invariants.
+/// Returns the SKIP and INHERIT runs of the default method (LENGYEL) for checks of the tangents.
+fn check_policies(case: &Case, expected: &Expected) -> (Run, Run) {
+    check_policies_with(case, expected, &METHODS)
+}
+
+/// [`check_policies`] with the given methods; returns the SKIP and INHERIT runs of the first.
+fn check_policies_with(case: &Case, expected: &Expected, methods: &[Method]) -> (Run, Run) {
+    let name = &case.name;
+    let mut first_runs = None;
+    for &method in methods {
+        let mut runs = Vec::new();
+        for policy in [Policy::Skip, Policy::Inherit, Policy::Reject] {
+            let options = Options {
+                method,
+                degenerate_policy: policy,
+                ..Options::default()
+            };
+            let run = run_with(case, &options);
+            let refused = policy == Policy::Reject && expected.degenerate > 0;
+            let mut wanted = expected.report(policy);
+            if refused {
+                // The header leaves open whether a refusal counts abnormal normals; not asserted.
+                wanted.abnormal_normals = run.report.abnormal_normals;
+            }
+            assert_eq!(run.report, wanted, "{name}: {method:?} {policy:?} report");
+            if refused {
+                assert_eq!(run.result, Err(Error::DegenerateUv), "{name}: {method:?} REJECT status");
+                assert!(run.untouched(), "{name}: {method:?} REJECT wrote output while refusing");
+            } else {
+                assert_eq!(run.result, Ok(()), "{name}: {method:?} {policy:?} status");
+                if let Err(e) = check_invariants(&case.normals, &run.tangents, Some(&run.bitangents)) {
+                    panic!("{name}: {method:?} {policy:?}: {e}");
+                }
+            }
+            if method == Method::DEFAULT {
+                // The C harness compares its reports with these.
+                let file = case.expected_report(policy);
+                assert_eq!(file, run.report, "{name}: {policy:?} case file report");
+            }
+            runs.push(run);
+        }
+        if first_runs.is_none() {
+            runs.truncate(2);
+            let inherit = runs.pop().unwrap();
+            let skip = runs.pop().unwrap();
+            first_runs = Some((skip, inherit));
+        }
+    }
+    first_runs.expect("at least one method")
+}
+
+/// Angle in degrees between the tangent's xyz and a unit direction.
+fn angle_degrees(tangent: [f32; 4], truth: [f64; 3]) -> f64 {
+    let t = [tangent[0], tangent[1], tangent[2]].map(f64::from);
+    let c = cross(t, truth);
+    dot(c, c).sqrt().atan2(dot(t, truth)).to_degrees()
+}
+
+const X: [f64; 3] = [1.0, 0.0, 0.0];
+
+/// Asserts vertex `v`'s tangent is within `degrees` of `truth` with handedness `w`.
+fn assert_frame(case: &str, run: &Run, v: usize, truth: [f64; 3], w: f32, degrees: f64) {
+    let t = run.tangent(v);
+    let angle = angle_degrees(t, truth);
+    assert!(
+        angle <= degrees && t[3] == w,
+        "{case}: vertex {v}: tangent {t:?} is {angle} degrees from {truth:?} (w expected {w})"
+    );
+}
+
+#[test]
+fn all_uvs_equal() {
+    let case = cases::all_uvs_equal();
+    // Both triangles collapse; no vertex has a measured neighbour to inherit from.
+    let (skip, inherit) = check_policies(&case, &Expected::degenerate(2, 0, 4));
+    let frames = normal_only_frames(&case);
+    assert_eq!(skip.tangents, frames, "SKIP gives the frames built from the normals");
+    assert_eq!(inherit.tangents, frames, "INHERIT has nothing to inherit");
+}
+
+#[test]
+fn collinear_uvs() {
+    for case in [cases::collinear_uvs(), cases::collinear_uvs_rounded()] {
+        let (skip, _) = check_policies(&case, &Expected::degenerate(2, 0, 4));
+        assert_eq!(skip.tangents, normal_only_frames(&case), "{}", case.name);
+    }
+}
+
+#[test]
+fn uvs_scaled_to_1e_minus_20_and_1e20() {
+    let reference = cases::uv_scale_reference();
+    let (cols, rows) = cases::SCALE_GRID;
+    // The separate collinear triangle comes after the grid's and is the only degenerate one.
+    let expected = Expected::degenerate(1, 2 * cols * rows, 3);
+    let (reference_skip, reference_inherit) = check_policies(&reference, &expected);
+    for case in [
+        cases::uv_scaled(1e-20, "uv_scaled_down_1e20"),
+        cases::uv_scaled(1e20, "uv_scaled_up_1e20"),
+    ] {
+        let (skip, inherit) = check_policies(&case, &expected);
+        for (policy, scaled, unscaled) in [
+            ("SKIP", &skip, &reference_skip),
+            ("INHERIT", &inherit, &reference_inherit),
+        ] {
+            for (v, (a, b)) in scaled.tangents.iter().zip(&unscaled.tangents).enumerate() {
+                let close = (0..3).all(|k| (a[k] - b[k]).abs() <= 1e-5) && a[3] == b[3];
+                assert!(close, "{} {policy}: vertex {v}: {a:?} vs unscaled {b:?}", case.name);
+            }
+        }
+    }
+}
+
+#[test]
+fn zero_area_triangles() {
+    // Vertex 3 lies on the zero-area triangle only; its neighbours 1 and 2 have tangent +x.
+    let case = cases::zero_area_midpoint();
+    let expected = Expected {
+        degenerate: 1,
+        first: Some(1),
+        skip_fallback: 1,
+        inherit_fallback: 0,
+        inherited: 1,
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&case, &expected);
+    for v in 0..3 {
+        assert_frame(&case.name, &skip, v, X, 1.0, 1e-3);
+    }
+    assert_eq!(skip.tangent(3), normal_only_frames(&case)[3]);
+    assert_frame(&case.name, &inherit, 3, X, 1.0, 1e-3);
+
+    // All three corners in one point: nothing to measure or inherit.
+    check_policies(&cases::zero_area_coincident(), &Expected::degenerate(1, 0, 3));
+}
+
+#[test]
+fn sliver() {
+    // Flipped in UV but above the threshold: it counts, as a mirrored contribution at its three
+    // corners (0, 2, 4), weighted down so that it cannot outvote the good triangles.
+    let kept = cases::sliver(cases::SLIVER_KEPT, "sliver_flipped_kept");
+    let expected = Expected {
+        mirrored: 3,
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&kept, &expected);
+    for run in [&skip, &inherit] {
+        for v in 0..kept.vertex_count() {
+            // The good triangles' own tangents deviate from +x by at most 4 * eps rad (0.23 degrees).
+            assert_frame(&kept.name, run, v, X, 1.0, 0.5);
+        }
+    }
+
+    // Below the threshold: degenerate, and every corner still has good triangles.
+    let thin = cases::sliver(cases::SLIVER_DEGENERATE, "sliver_below_threshold");
+    let expected = Expected {
+        degenerate: 1,
+        first: Some(1),
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&thin, &expected);
+    for run in [&skip, &inherit] {
+        for v in 0..thin.vertex_count() {
+            assert_frame(&thin.name, run, v, X, 1.0, 1e-3);
+        }
+    }
+}
+
+/// Splits the vertices that have no non-degenerate triangle into those INHERIT can reach (a chain
+/// of shared triangles leads to a vertex that has one) and the others: `(inherited, fallback)`.
+fn inherit_split(vertex_count: usize, indices: &[u32], measured: &[bool]) -> (usize, usize) {
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    let mut parent: Vec<usize> = (0..vertex_count).collect();
+    for tri in indices.chunks(3) {
+        for &v in &tri[1..] {
+            let (a, b) = (root(&mut parent, tri[0] as usize), root(&mut parent, v as usize));
+            parent[a] = b;
+        }
+    }
+    let mut region_measured = vec![false; vertex_count];
+    for v in (0..vertex_count).filter(|&v| measured[v]) {
+        let r = root(&mut parent, v);
+        region_measured[r] = true;
+    }
+    let (mut inherited, mut fallback) = (0, 0);
+    for v in (0..vertex_count).filter(|&v| !measured[v]) {
+        if region_measured[root(&mut parent, v)] {
+            inherited += 1;
+        } else {
+            fallback += 1;
+        }
+    }
+    (inherited, fallback)
+}
+
+/// Angle errors in degrees against the true tangent of a sphere.
+#[derive(Debug)]
+struct ErrorStats {
+    mean: f64,
+    p99: f64,
+    max: f64,
+    /// Vertices whose handedness is not the true +1.
+    wrong_w: usize,
+}
+
+/// Errors over the vertices `include` accepts.
+fn sphere_errors_over(run: &Run, truth: &Case, include: impl Fn(usize) -> bool) -> ErrorStats {
+    let uvs = truth.texcoords.as_ref().unwrap();
+    let vertices: Vec<usize> = (0..truth.vertex_count()).filter(|&v| include(v)).collect();
+    let mut angles: Vec<f64> = vertices
+        .iter()
+        .map(|&v| angle_degrees(run.tangent(v), tangent_at_u(uvs[v][0])))
+        .collect();
+    let wrong_w = vertices.iter().filter(|&&v| run.tangent(v)[3] != 1.0).count();
+    let mean = angles.iter().sum::<f64>() / angles.len() as f64;
+    angles.sort_by(f64::total_cmp);
+    ErrorStats {
+        mean,
+        p99: angles[angles.len() * 99 / 100],
+        max: *angles.last().unwrap(),
+        wrong_w,
+    }
+}
+
+fn sphere_errors(run: &Run, truth: &Case) -> ErrorStats {
+    sphere_errors_over(run, truth, |_| true)
+}
+
+#[test]
+fn quantized_8bit_uvs_on_a_dense_mesh() {
+    let case = cases::quantized_uv_sphere();
+    let (segments, rings) = cases::QUANTIZED_SPHERE;
+    let truth = uv_sphere("truth", segments, rings, Poles::PerSegment);
+
+    // Expected counts from the 8-bit integers: a triangle is degenerate exactly when its integer
+    // UV determinant is 0 (a nonzero one on these few-unit triangles has quality far above 1e-5).
+    let k: Vec<[i64; 2]> = case
+        .texcoords
+        .as_ref()
+        .unwrap()
+        .iter()
+        .map(|uv| uv.map(|x| (x * 255.0).round() as i64))
+        .collect();
+    let indices = case.indices.as_ref().unwrap();
+    let mut has_good_triangle = vec![false; case.vertex_count()];
+    let (mut degenerate, mut first) = (0, None);
+    for (t, tri) in indices.chunks(3).enumerate() {
+        let [a, b, c] = [0, 1, 2].map(|i| k[tri[i] as usize]);
+        let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        // Rounding is monotone, so no triangle flips: nothing can be mirrored.
+        assert!(det >= 0, "triangle {t} flipped by rounding");
+        if det == 0 {
+            degenerate += 1;
+            first.get_or_insert(t);
+        } else {
+            tri.iter().for_each(|&v| has_good_triangle[v as usize] = true);
+        }
+    }
+    // Steps of 1/288 and 1/272 exceed half of 1/255, so no two neighbouring steps both collapse
+    // and every ring vertex keeps a good triangle; a pole vertex has a single triangle, which
+    // collapses with its column, and then inherits from that triangle's ring vertices.
+    assert!(
+        degenerate > 1000,
+        "construction should collapse many triangles, got {degenerate}"
+    );
+    let unmeasured = has_good_triangle.iter().filter(|&&g| !g).count();
+    assert!(unmeasured > 0 && unmeasured < 2 * segments);
+    let (inherited, inherit_fallback) = inherit_split(case.vertex_count(), indices, &has_good_triangle);
+    let expected = Expected {
+        degenerate,
+        first,
+        skip_fallback: unmeasured,
+        inherit_fallback,
+        inherited,
+        ..Expected::default()
+    };
+    println!(
+        "quantized {segments}x{rings} sphere: {} vertices, {} triangles, {degenerate} degenerate, \
+         {unmeasured} vertices on degenerate triangles only",
+        case.vertex_count(),
+        indices.len() / 3
+    );
+    let baseline = sphere_errors(&run(&truth, Policy::Skip), &truth);
+    println!("  unquantized UVs (tessellation error): {baseline:?}");
+    // Bounds a few times what was measured (LENGYEL: mean 0.11 degrees, max 0.63, the same max as
+    // the unquantized sphere's); SKIP's fallback frames at the collapsed poles are left out.
+    for method in METHODS {
+        let (skip, inherit) = check_policies_with(&case, &expected, &[method]);
+        let skip_all = sphere_errors(&skip, &truth);
+        let skip_measured = sphere_errors_over(&skip, &truth, |v| has_good_triangle[v]);
+        let inherit_all = sphere_errors(&inherit, &truth);
+        println!("  {method:?} SKIP, all vertices:      {skip_all:?}");
+        println!("  {method:?} SKIP, measured vertices: {skip_measured:?}");
+        println!("  {method:?} INHERIT, all vertices:   {inherit_all:?}");
+        for (what, errors) in [("SKIP", &skip_measured), ("INHERIT", &inherit_all)] {
+            assert!(errors.mean < 0.5, "{method:?} {what}: mean angle error {errors:?}");
+            assert!(
+                errors.p99 < 1.5,
+                "{method:?} {what}: 99th percentile angle error {errors:?}"
+            );
+            assert!(errors.max < 2.0, "{method:?} {what}: largest angle error {errors:?}");
+            assert_eq!(errors.wrong_w, 0, "{method:?} {what}: handedness flipped by rounding");
+        }
+    }
+    let legacy = run_with(&case, &Options::legacy());
+    let non_finite = legacy
+        .tangents
+        .iter()
+        .filter(|t| t.iter().any(|x| !x.is_finite()))
+        .count();
+    println!("  LEGACY: {non_finite} vertices written with inf or NaN");
+}
+
+#[test]
+fn uv_sphere_poles() {
+    let (segments, rings) = cases::POLE_SPHERE;
+
+    // One pole vertex per segment: each sees one triangle whose u edge is the chord of its
+    // segment, so its tangent is the true one at the segment's middle u.
+    let case = cases::sphere_poles(Poles::PerSegment);
+    let (skip, inherit) = check_policies(&case, &Expected::default());
+    let uvs = case.texcoords.as_ref().unwrap();
+    let poles = (0..segments).chain(case.vertex_count() - segments..case.vertex_count());
+    for v in poles {
+        for run in [&skip, &inherit] {
+            assert_frame(&case.name, run, v, tangent_at_u(uvs[v][0]), 1.0, 1e-3);
+        }
+    }
+    // Elsewhere only the coarse tessellation's own error (16 segments: up to ~10 degrees next to
+    // the seam, where a vertex sees one side's triangles only).
+    let errors = sphere_errors(&skip, &case);
+    assert!(errors.max < 15.0 && errors.mean < 3.0, "{errors:?}");
+
+    // One shared vertex per pole: its triangles' u edges are the chords of a closed ring and sum
+    // to zero, so SKIP has no tangent to measure there. INHERIT takes one from the ring around it,
+    // as its region has measured tangents.
+    let case = cases::sphere_poles(Poles::Shared);
+    let shared_poles = [0, case.vertex_count() - 1];
+    let expected = Expected {
+        skip_fallback: 2,
+        inherit_fallback: 0,
+        inherited: 2,
+        ..Expected::default()
+    };
+    let skip = run(&case, Policy::Skip);
+    assert_eq!(skip.report, expected.report(Policy::Skip));
+    let frames = normal_only_frames(&case);
+    for v in shared_poles {
+        assert_eq!(skip.tangent(v), frames[v]);
+    }
+    let _ = rings;
+    check_policies(&case, &expected);
+}
+
+#[test]
+fn mirror_fold_with_shared_vertices() {
+    let case = cases::mirror_fold();
+    let (cols, rows) = cases::MIRROR_GRID;
+    // The seam is the middle column, one vertex per row, used by both halves.
+    let expected = Expected {
+        mirrored: rows + 1,
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&case, &expected);
+    for run in [&skip, &inherit] {
+        for j in 0..=rows {
+            for i in 0..=cols {
+                let v = grid_index(cols, i, j) as usize;
+                let t = run.tangent(v);
+                // Right half: u along +x, w = +1; left half: u along -x, w = -1. Either way the
+                // bitangent w * cross(n, t) is +y, the true direction of v on both halves.
+                let side = (i as f64 - (cols / 2) as f64).clamp(-1.0, 1.0);
+                if side != 0.0 {
+                    assert_frame(&case.name, run, v, [side, 0.0, 0.0], side as f32, 1e-3);
+                } else {
+                    // The seam keeps one half's frame whole rather than a cancelled sum.
+                    assert_frame(&case.name, run, v, [f64::from(t[3]), 0.0, 0.0], t[3], 1e-3);
+                }
+                let b = run.bitangents[v];
+                assert!((b[1] - 1.0).abs() < 1e-5, "{}: vertex {v}: bitangent {b:?}", case.name);
+            }
+        }
+    }
+}
+
+/// The six triangles of the 3 x 3 grid that use [`BAD_VERTEX`] are degenerate when one of its
+/// inputs is not finite: vertices 0 and 8 then lie on degenerate triangles only (they inherit
+/// from 1, 3 and 5, 7), and so does 4.
+fn check_bad_attribute(attribute: Attribute) {
+    for component in 0..attribute.components() {
+        for (_, value) in BAD_VALUES {
+            let case = cases::bad_attribute(attribute, component, value);
+            let expected = match attribute {
+                Attribute::Normal => Expected {
+                    abnormal: 1,
+                    ..Expected::default()
+                },
+                Attribute::Position | Attribute::Texcoord => Expected {
+                    degenerate: 6,
+                    first: Some(0),
+                    skip_fallback: 3,
+                    inherit_fallback: 0,
+                    inherited: 3,
+                    ..Expected::default()
+                },
+            };
+            let (skip, inherit) = check_policies(&case, &expected);
+            let frames = normal_only_frames(&case);
+            for (v, &frame) in frames.iter().enumerate() {
+                if attribute == Attribute::Normal && v == BAD_VERTEX {
+                    // No usable normal: the measured direction stands, w has no meaning.
+                    for run in [&skip, &inherit] {
+                        let angle = angle_degrees(run.tangent(v), X);
+                        assert!(angle < 1e-3, "{}: {:?}", case.name, run.tangent(v));
+                    }
+                    continue;
+                }
+                if attribute == Attribute::Normal || ![0, BAD_VERTEX, 8].contains(&v) {
+                    assert_frame(&case.name, &skip, v, X, 1.0, 1e-3);
+                } else {
+                    assert_eq!(skip.tangent(v), frame, "{}: vertex {v}", case.name);
+                }
+                assert_frame(&case.name, &inherit, v, X, 1.0, 1e-3);
+            }
+        }
+    }
+}
+
+#[test]
+fn nan_and_inf_in_positions() {
+    check_bad_attribute(Attribute::Position);
+}
+
+#[test]
+fn nan_and_inf_in_normals() {
+    check_bad_attribute(Attribute::Normal);
+}
+
+#[test]
+fn nan_and_inf_in_texcoords() {
+    check_bad_attribute(Attribute::Texcoord);
+}
+
+#[test]
+fn zero_normals() {
+    // Zero normals do not make triangles degenerate: the tangent is the measured one, unprojected.
+    for (case, abnormal) in [(cases::zero_normals_all(), 4), (cases::zero_normal_center(), 1)] {
+        let expected = Expected {
+            abnormal,
+            ..Expected::default()
+        };
+        let (skip, inherit) = check_policies(&case, &expected);
+        for v in 0..case.vertex_count() {
+            for run in [&skip, &inherit] {
+                let angle = angle_degrees(run.tangent(v), X);
+                assert!(angle < 1e-3, "{}: vertex {v}: {:?}", case.name, run.tangent(v));
+            }
+        }
+    }
+    // Nothing measured and no normal: still a unit tangent, w = +-1 and a unit bitangent.
+    let expected = Expected {
+        abnormal: 4,
+        ..Expected::degenerate(2, 0, 4)
+    };
+    check_policies(&cases::zero_normals_collapsed(), &expected);
+
+    // Subnormal, tiny and long normals along +z act as +z (and are counted as not unit).
+    let case = cases::tiny_and_long_normals();
+    let expected = Expected {
+        abnormal: 4,
+        ..Expected::default()
+    };
+    let (skip, _) = check_policies(&case, &expected);
+    for (v, n) in case.normals.iter().enumerate() {
+        assert_eq!(unit_normal(*n), Some([0.0, 0.0, 1.0]));
+        assert_frame(&case.name, &skip, v, X, 1.0, 1e-3);
+    }
+}
+
+#[test]
+fn unreferenced_vertices() {
+    // Vertices 1, 3 and 6 are used by no triangle, so they fall back under both policies; vertex
+    // 1's normal is NaN.
+    let case = cases::unreferenced_vertices();
+    let expected = Expected {
+        unreferenced: 3,
+        abnormal: 1,
+        skip_fallback: 3,
+        inherit_fallback: 3,
+        ..Expected::default()
+    };
+    let (skip, _) = check_policies(&case, &expected);
+    for v in [0, 2, 4, 5] {
+        assert_frame(&case.name, &skip, v, X, 1.0, 1e-3);
+    }
+
+    let case = cases::no_triangles();
+    let expected = Expected {
+        unreferenced: 6,
+        skip_fallback: 6,
+        inherit_fallback: 6,
+        ..Expected::default()
+    };
+    check_policies(&case, &expected);
+}
+
+#[test]
+fn single_triangle() {
+    // dP/du = (2, 0, 1) and dP/dv = (0, 1, 0); cross(n, t) points along +y, so w = +1.
+    let truth = [2.0 / 5f64.sqrt(), 0.0, 1.0 / 5f64.sqrt()];
+    for case in [cases::single_triangle(), cases::single_triangle_unindexed()] {
+        let (skip, inherit) = check_policies(&case, &Expected::default());
+        for v in 0..3 {
+            assert_frame(&case.name, &skip, v, truth, 1.0, 1e-3);
+            assert_frame(&case.name, &inherit, v, truth, 1.0, 1e-3);
+        }
+    }
+    check_policies(&cases::single_degenerate_triangle(), &Expected::degenerate(1, 0, 3));
+}
+
+#[test]
+fn empty_mesh() {
+    for case in [cases::empty_mesh(), cases::empty_mesh_unindexed()] {
+        check_policies(&case, &Expected::default());
+        // Output views of zero elements over guard bytes: nothing may be written, by any policy.
+        for policy in [Policy::Legacy, Policy::Skip, Policy::Inherit, Policy::Reject] {
+            let mut tangent_bytes = [0xA5u8; 32];
+            let mut bitangent_bytes = [0x5Au8; 32];
+            let mut report = Report {
+                degenerate_triangles: 7,
+                first_degenerate_triangle: 7,
+                fallback_vertices: 7,
+                mirrored_vertices: 7,
+                unreferenced_vertices: 7,
+                inherited_vertices: 7,
+                abnormal_normals: 7,
+            };
+            let result = {
+                let mut output = Output {
+                    tangents: StridedMut::from_bytes(&mut tangent_bytes, 16, 0).unwrap(),
+                    bitangents: Some(StridedMut::from_bytes(&mut bitangent_bytes, 12, 0).unwrap()),
+                };
+                let options = Options {
+                    degenerate_policy: policy,
+                    ..Options::default()
+                };
+                generate_into(&case.mesh(), &options, &mut output, None, &mut report)
+            };
+            assert_eq!(result, Ok(()), "{}: {policy:?}", case.name);
+            assert_eq!(report, Report::default(), "{}: {policy:?}", case.name);
+            assert_eq!(report.first_degenerate_triangle, usize::MAX);
+            assert!(tangent_bytes.iter().all(|&b| b == 0xA5) && bitangent_bytes.iter().all(|&b| b == 0x5A));
+        }
+    }
+}
+
+#[test]
+fn duplicate_indices_in_one_triangle() {
+    // Triangles 2 [0,0,1], 3 [3,2,3] and 4 [4,4,4] are degenerate; vertex 4 is used (so not
+    // unreferenced) but only by [4,4,4], which offers no neighbour to inherit from.
+    let case = cases::duplicate_indices();
+    let (skip, _) = check_policies(&case, &Expected::degenerate(3, 2, 1));
+    for v in 0..4 {
+        assert_frame(&case.name, &skip, v, X, 1.0, 1e-3);
+    }
+}
+
+#[test]
+fn texcoords_absent() {
+    // Nothing is degenerate without texture coordinates (REJECT accepts), every vertex falls back.
+    let case = cases::texcoords_absent();
+    let expected = Expected {
+        unreferenced: 1,
+        skip_fallback: 5,
+        inherit_fallback: 5,
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&case, &expected);
+    assert_eq!(skip.tangents, inherit.tangents);
+    // LEGACY needs texture coordinates and writes nothing without them.
+    let legacy = run_with(&case, &Options::legacy());
+    assert_eq!(legacy.result, Err(Error::NullPointer));
+    assert!(legacy.untouched());
+}
+
+#[test]
+fn normals_near_negative_z() {
+    // Vertex 3's normal (0, 0, -1e-30) is far from unit length.
+    let case = cases::normals_near_negative_z();
+    let expected = Expected {
+        abnormal: 1,
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&case, &expected);
+    for v in 0..case.vertex_count() {
+        // Normals tilt by at most 1.5e-4 rad from -z; the measured +x moves by no more.
+        assert_frame(&case.name, &skip, v, X, -1.0, 0.01);
+        assert_frame(&case.name, &inherit, v, X, -1.0, 0.01);
+    }
+
+    // The frames built from these normals alone must not jump between nearby normals: the one
+    // for exactly (0, 0, -1) is within a few times the tilt of every other one.
+    let case = cases::normals_near_negative_z_fallback();
+    let expected = Expected {
+        abnormal: 1,
+        ..Expected::degenerate(2, 0, 6)
+    };
+    let (skip, _) = check_policies(&case, &expected);
+    let reference = skip.tangent(0);
+    let reference = [reference[0], reference[1], reference[2]].map(f64::from);
+    for v in 1..case.vertex_count() {
+        let angle = angle_degrees(skip.tangent(v), reference);
+        assert!(
+            angle < 0.05,
+            "vertex {v}: fallback {:?} is {angle} degrees away",
+            skip.tangent(v)
+        );
+    }
+}
+
+#[test]
+fn legacy_zero_determinant_writes_non_finite_values() {
+    // The listing divides by the zero UV determinant: kept on purpose for bit-exactness.
+    for case in [cases::all_uvs_equal(), cases::collinear_uvs()] {
+        let legacy = run_with(&case, &Options::legacy());
+        assert_eq!(legacy.result, Ok(()), "{}", case.name);
+        assert_eq!(legacy.report.degenerate_triangles, 2, "{}", case.name);
+        for (v, t) in legacy.tangents.iter().enumerate() {
+            assert!(
+                t[..3].iter().any(|x| !x.is_finite()),
+                "{}: vertex {v}: {t:?}",
+                case.name
+            );
+        }
+    }
+}
+
+#[test]
+fn inherit_fills_a_collapsed_region_from_its_neighbours() {
+    let case = cases::collapsed_band();
+    let (segments, _) = BAND_CYLINDER;
+    let [below, middle, above] = BAND_ROWS;
+    // Each quad between rows 3 and 5 has two corners in one column: same UV, zero area. Row 4
+    // touches only those; rows 3 and 5 also touch good triangles on their outer side.
+    let expected = Expected {
+        degenerate: 2 * 2 * segments,
+        first: Some(2 * below * segments),
+        skip_fallback: segments + 1,
+        inherit_fallback: 0,
+        inherited: segments + 1,
+        ..Expected::default()
+    };
+    let (skip, inherit) = check_policies(&case, &expected);
+    let frames = normal_only_frames(&case);
+    let uvs = case.texcoords.as_ref().unwrap();
+    for v in 0..case.vertex_count() {
+        if (v / (segments + 1)) != middle {
+            assert_eq!(skip.tangent(v), inherit.tangent(v), "vertex {v}: measured frames agree");
+        }
+    }
+    for i in 0..=segments {
+        let inner = grid_index(segments, i, middle) as usize;
+        assert_eq!(
+            skip.tangent(inner),
+            frames[inner],
+            "SKIP: vertex {inner} gets its fallback frame"
+        );
+        let t = inherit.tangent(inner);
+        assert_frame(&case.name, &inherit, inner, tangent_at_u(uvs[inner][0]), 1.0, 1.0);
+        for row in [below, above] {
+            let neighbour = inherit.tangent(grid_index(segments, i, row) as usize);
+            let along = [neighbour[0], neighbour[1], neighbour[2]].map(f64::from);
+            let angle = angle_degrees(t, along);
+            assert!(
+                angle < 2.0 && neighbour[3] == t[3],
+                "vertex {inner}: {t:?} vs neighbour {neighbour:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn inherit_falls_back_everywhere_on_a_fully_collapsed_mesh() {
+    let case = cases::fully_collapsed();
+    let (segments, rows) = BAND_CYLINDER;
+    let expected = Expected::degenerate(2 * segments * rows, 0, case.vertex_count());
+    let (skip, inherit) = check_policies(&case, &expected);
+    assert_eq!(inherit.tangents, skip.tangents);
+    assert_eq!(skip.tangents, normal_only_frames(&case));
+}
+
+#[test]
+fn every_case_keeps_the_invariants_under_every_robust_policy() {
+    let cases = cases::all_cases();
+    let mut names: Vec<&str> = cases.iter().map(|c| c.name.as_str()).collect();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), cases.len(), "case names must be unique");
+    for case in &cases {
+        let skip = run(case, Policy::Skip);
+        for policy in [Policy::Skip, Policy::Inherit, Policy::Reject] {
+            let run = run(case, policy);
+            let report = run.report;
+            match run.result {
+                Ok(()) => {
+                    if let Err(e) = check_invariants(&case.normals, &run.tangents, Some(&run.bitangents)) {
+                        panic!("{}: {policy:?}: {e}", case.name);
+                    }
+                }
+                Err(Error::DegenerateUv) if policy == Policy::Reject => {
+                    assert!(run.untouched(), "{}: REJECT wrote while refusing", case.name);
+                    assert!(report.degenerate_triangles > 0);
+                }
+                Err(e) => panic!("{}: {policy:?} failed: {e:?}", case.name),
+            }
+            // What the mesh holds does not depend on the policy; what is done about it does.
+            assert_eq!(report.degenerate_triangles, skip.report.degenerate_triangles);
+            assert_eq!(report.first_degenerate_triangle, skip.report.first_degenerate_triangle);
+            assert_eq!(report.mirrored_vertices, skip.report.mirrored_vertices);
+            assert_eq!(report.unreferenced_vertices, skip.report.unreferenced_vertices);
+            if policy == Policy::Inherit {
+                assert_eq!(
+                    report.fallback_vertices + report.inherited_vertices,
+                    skip.report.fallback_vertices,
+                    "{}: INHERIT resolves exactly the vertices SKIP falls back on",
+                    case.name
+                );
+            }
+        }
+    }
+}
