@@ -31,8 +31,8 @@
 // `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
 #define TBASIS_METHOD_LENGYEL 1
 
-// `method`: each triangle's tangent projected into the vertex's tangent plane, normalized and
-// weighted by the corner angle (MikkTSpace's weighting).
+// `method` (the default): each triangle's tangent projected into the vertex's tangent plane,
+// normalized and weighted by the corner angle (MikkTSpace's weighting).
 #define TBASIS_METHOD_ANGLE 2
 
 // `method`: unit face tangents weighted by triangle area.
@@ -91,7 +91,7 @@ typedef struct tbasis_mesh {
 
 // How to compute. All-zero (or a NULL pointer) means the defaults.
 typedef struct tbasis_options {
-  // A `TBASIS_METHOD_*` value; 0: the recommended default.
+  // A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`).
   uint32_t method;
   // A `TBASIS_DEGENERATE_*` value; 0: the default (`TBASIS_DEGENERATE_INHERIT`).
   uint32_t degenerate_policy;

@@ -66,8 +66,8 @@ pub const TBASIS_INDEX_U32: u32 = 2;
 
 /// `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
 pub const TBASIS_METHOD_LENGYEL: u32 = 1;
-/// `method`: each triangle's tangent projected into the vertex's tangent plane, normalized and
-/// weighted by the corner angle (MikkTSpace's weighting).
+/// `method` (the default): each triangle's tangent projected into the vertex's tangent plane,
+/// normalized and weighted by the corner angle (MikkTSpace's weighting).
 pub const TBASIS_METHOD_ANGLE: u32 = 2;
 /// `method`: unit face tangents weighted by triangle area.
 pub const TBASIS_METHOD_AREA: u32 = 3;
@@ -122,7 +122,7 @@ pub struct tbasis_mesh {
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct tbasis_options {
-    /// A `TBASIS_METHOD_*` value; 0: the recommended default.
+    /// A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`).
     pub method: u32,
     /// A `TBASIS_DEGENERATE_*` value; 0: the default (`TBASIS_DEGENERATE_INHERIT`).
     pub degenerate_policy: u32,

@@ -9,30 +9,55 @@ pub fn reject_normal(tangent: Vec3, unit_normal: Vec3) -> Vec3 {
     tangent - unit_normal * unit_normal.dot(tangent)
 }
 
-/// `|v|` without overflow or underflow: scaled by the largest component first, so lengths near
-/// 1e20 (whose square overflows f32) or 1e-30 (whose square underflows) come out right.
-#[inline]
-pub fn careful_length(v: Vec3) -> f32 {
-    let largest = v.abs().max_element();
-    if largest > 0.0 && largest.is_finite() {
-        largest * (v / largest).length()
-    } else {
-        largest
+/// `(|v|, v / |v|)`, or `None` when `v` is zero or not finite.
+///
+/// One square root and one division when `|v|^2` is comfortably inside f32's range; otherwise
+/// (UVs scaled by 1e-20 give tangents of length 1e20, whose square overflows) it divides by the
+/// largest component first.
+#[inline(always)]
+pub fn length_and_direction(v: Vec3) -> Option<(f32, Vec3)> {
+    let squared = v.length_squared();
+    if squared > 1e-30 && squared < 1e30 {
+        let length = squared.sqrt();
+        return Some((length, v * (1.0 / length)));
     }
+    length_and_direction_scaled(v)
 }
 
-/// `v / |v|`, or `None` when `v` is zero or not finite.
-///
-/// Divides by the largest component first so that lengths near the float limits (UVs scaled by
-/// 1e-20 give tangents of length 1e20, whose squared length overflows) still normalize.
-#[inline]
-pub fn normalize_careful(v: Vec3) -> Option<Vec3> {
+#[cold]
+fn length_and_direction_scaled(v: Vec3) -> Option<(f32, Vec3)> {
     let largest = v.abs().max_element();
     if !(v.is_finite() && largest > 0.0) {
         return None;
     }
     let scaled = v / largest;
-    Some(scaled / scaled.length())
+    let length = scaled.length();
+    Some((largest * length, scaled / length))
+}
+
+/// `v / |v|`, or `None` when `v` is zero or not finite.
+#[inline(always)]
+pub fn normalize_careful(v: Vec3) -> Option<Vec3> {
+    length_and_direction(v).map(|(_, direction)| direction)
+}
+
+/// Gram-Schmidt, `T' = T - (N . T) N` (Lengyel 2001), then normalize: `(|T'|, T' / |T'|)`, or
+/// `None` when nothing is left. Without a usable normal, `T` itself is normalized.
+///
+/// One f32 pass leaves `T'` off orthogonal by about float precision times `|N . T| / |T'|`; when
+/// the sum nearly follows the normal that exceeds 1e-6, so a second pass removes the rest
+/// ("twice is enough").
+#[inline(always)]
+pub fn orthonormalize(tangent: Vec3, normal: Option<Vec3>) -> Option<(f32, Vec3)> {
+    let Some(n) = normal else {
+        return length_and_direction(tangent);
+    };
+    let along = n.dot(tangent);
+    let (length, direction) = length_and_direction(tangent - n * along)?;
+    if along.abs() <= 8.0 * length {
+        return Some((length, direction));
+    }
+    normalize_careful(reject_normal(direction, n)).map(|direction| (length, direction))
 }
 
 /// A unit tangent orthogonal to the unit normal `n`, from `n` alone.
@@ -46,20 +71,6 @@ pub fn fallback_tangent(n: Vec3) -> Vec3 {
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
     Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x)
-}
-
-/// `in_plane` (already rid of most of the normal) as a unit vector orthogonal to `normal`.
-///
-/// Removing the normal once in f32 leaves an error of about float precision divided by the share
-/// of the sum that lay in the plane, which for a sum nearly along the normal exceeds 1e-5; a
-/// second rejection after normalizing brings it to rounding level ("twice is enough").
-#[inline]
-pub fn finish_tangent(in_plane: Vec3, normal: Option<Vec3>) -> Option<Vec3> {
-    let once = normalize_careful(in_plane)?;
-    match normal {
-        Some(n) => normalize_careful(reject_normal(once, n)),
-        None => Some(once),
-    }
 }
 
 /// The tangent for a vertex whose normal is unusable (zero or not finite): the x axis.
@@ -94,6 +105,18 @@ mod tests {
     }
 
     #[test]
+    fn orthonormalize_is_orthogonal_even_when_the_tangent_nearly_follows_the_normal() {
+        let n = Vec3::new(1.0, 0.0, 0.00105).normalize();
+        for t in [Vec3::Z, Vec3::new(1.0, 1e-3, 0.0), Vec3::new(0.3, -0.2, 0.9)] {
+            let (_, unit) = orthonormalize(t, Some(n)).unwrap();
+            assert!(unit.dot(n).abs() <= 1e-6, "{t}: {}", unit.dot(n));
+            assert!((unit.length() - 1.0).abs() <= 1e-6);
+        }
+        // A tangent along the normal leaves only rounding residue, which callers measure as tiny.
+        assert!(orthonormalize(n * 2.0, Some(n)).is_none_or(|(length, _)| length < 1e-6));
+    }
+
+    #[test]
     fn careful_normalize_survives_extreme_lengths() {
         for scale in [1e-30f32, 1e-20, 1.0, 1e20, 1e30] {
             let v = normalize_careful(Vec3::new(3.0, 4.0, 0.0) * scale).unwrap();
@@ -103,7 +126,7 @@ mod tests {
         assert_eq!(normalize_careful(Vec3::new(f32::NAN, 0.0, 1.0)), None);
         assert_eq!(normalize_careful(Vec3::new(f32::INFINITY, 0.0, 1.0)), None);
         for scale in [1e-30f32, 1e20, 1e30] {
-            let length = careful_length(Vec3::new(3.0, 4.0, 0.0) * scale);
+            let (length, _) = length_and_direction(Vec3::new(3.0, 4.0, 0.0) * scale).unwrap();
             assert!((length / (5.0 * scale) - 1.0).abs() < 1e-6, "{scale}: {length}");
         }
     }

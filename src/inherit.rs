@@ -3,9 +3,9 @@
 
 use glam::Vec3;
 
-use crate::frame::{finish_tangent, reject_normal};
+use crate::frame::orthonormalize;
 use crate::mesh::Mesh;
-use crate::resolve::unit_normal;
+use crate::resolve::VertexNormal;
 use crate::scratch::{flag, Scratch};
 
 /// Spreads resolved tangents into unresolved vertices one ring of shared triangles at a time,
@@ -62,21 +62,15 @@ fn settle_ring(mesh: &Mesh, scratch: &mut Scratch) -> usize {
         let vote = sums.weight;
         sums.secondary = [0.0; 3];
         sums.weight = 0.0;
-        let normal = unit_normal(mesh.normals.get(v));
-        let in_plane = match normal {
-            Some(n) => reject_normal(gathered, n),
-            None => gathered,
-        };
+        let normal = VertexNormal::new(mesh.normals.get(v)).unit;
         // Neighbours' tangents are unit vectors: a remainder below 1e-3 of one is cancellation.
-        let usable = in_plane.length() > 1e-3;
-        if !usable {
-            continue;
-        }
-        if let Some(tangent) = finish_tangent(in_plane, normal) {
-            sums.primary = tangent.to_array();
-            sums.weight = if vote < 0.0 { -1.0 } else { 1.0 };
-            scratch.flags[v] |= flag::RESOLVED;
-            settled += 1;
+        if let Some((in_plane, tangent)) = orthonormalize(gathered, normal) {
+            if in_plane > 1e-3 {
+                sums.primary = tangent.to_array();
+                sums.weight = if vote < 0.0 { -1.0 } else { 1.0 };
+                scratch.flags[v] |= flag::RESOLVED;
+                settled += 1;
+            }
         }
     }
     settled

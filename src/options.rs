@@ -19,8 +19,10 @@ pub enum Method {
 }
 
 impl Method {
-    /// The method used when the caller asks for the default (`0` in C).
-    pub const DEFAULT: Method = Method::Lengyel;
+    /// The method used when the caller asks for the default (`0` in C): ANGLE, whose mean error
+    /// on the analytic scenes of `docs/chart.md` is within 0.2% of mikktspace.c's on every scene
+    /// and size and about half the listing's.
+    pub const DEFAULT: Method = Method::Angle;
 
     /// The method with this C value; `0` is the default.
     pub fn from_code(code: u32) -> Result<Method, Error> {

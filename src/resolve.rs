@@ -3,15 +3,43 @@
 
 use glam::Vec3;
 
-use crate::frame::{
-    careful_length, fallback_tangent, finish_tangent, normalize_careful, reject_normal, NO_NORMAL_TANGENT,
-};
-use crate::scratch::VertexSums;
+use crate::frame::{fallback_tangent, length_and_direction, orthonormalize, NO_NORMAL_TANGENT};
+use crate::inherit;
+use crate::mesh::{Mesh, Output};
+use crate::options::DegeneratePolicy;
+use crate::report::Report;
+use crate::scratch::{flag, Scratch, VertexSums};
 
 /// A summed tangent whose component off the normal is below this share of the total weight that
 /// went into it is cancellation or rounding noise (mirror contributions meeting head-on, or a
 /// tangent parallel to the normal), not a measurement.
 const USABLE_SHARE: f32 = 1e-3;
+
+/// A vertex normal as the robust policies use it.
+#[derive(Clone, Copy, Debug)]
+pub struct VertexNormal {
+    /// The normal scaled to unit length; `None` when it is zero or not finite.
+    pub unit: Option<Vec3>,
+    /// The normal was already unit length within 1e-3.
+    pub was_unit: bool,
+}
+
+impl VertexNormal {
+    /// Reads and normalizes a caller's normal.
+    #[inline(always)]
+    pub fn new(raw: [f32; 3]) -> Self {
+        match length_and_direction(Vec3::from_array(raw)) {
+            Some((length, unit)) => VertexNormal {
+                unit: Some(unit),
+                was_unit: (length - 1.0).abs() <= 1e-3,
+            },
+            None => VertexNormal {
+                unit: None,
+                was_unit: false,
+            },
+        }
+    }
+}
 
 /// The outcome for one vertex.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,27 +50,8 @@ pub enum Resolved {
     Missing,
 }
 
-/// The vertex normal scaled to unit length, or `None` when it is zero or not finite.
-#[inline(always)]
-pub fn unit_normal(raw: [f32; 3]) -> Option<Vec3> {
-    normalize_careful(Vec3::from_array(raw))
-}
-
-/// True when `n` is finite and its length is 1 within 1e-3.
-#[inline(always)]
-fn is_unit(n: [f32; 3]) -> bool {
-    (Vec3::from_array(n).length() - 1.0).abs() <= 1e-3
-}
-
-/// Number of vertices whose normal is not unit length within 1e-3 (zero and non-finite included).
-pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
-    (0..mesh.vertex_count())
-        .filter(|&v| !is_unit(mesh.normals.get(v)))
-        .count()
-}
-
 /// Keeps the handedness whose tangents sum longer (`primary`: right-handed, w = +1), removes the
-/// normal from it (`T' = T - (N.T)N`) and normalizes it, if what is left is usable.
+/// normal from it and normalizes it, if what is left is usable.
 #[inline(always)]
 pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
     let right = Vec3::from_array(sums.primary);
@@ -52,17 +61,9 @@ pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
     } else {
         (left, -1.0)
     };
-    let in_plane = match normal {
-        Some(n) => reject_normal(sum, n),
-        None => sum,
-    };
-    let usable = careful_length(in_plane) > USABLE_SHARE * sums.weight;
-    if !usable {
-        return Resolved::Missing;
-    }
-    match finish_tangent(in_plane, normal) {
-        Some(t) => Resolved::Measured(t, w),
-        None => Resolved::Missing,
+    match orthonormalize(sum, normal) {
+        Some((in_plane, tangent)) if in_plane > USABLE_SHARE * sums.weight => Resolved::Measured(tangent, w),
+        _ => Resolved::Missing,
     }
 }
 
@@ -72,11 +73,12 @@ pub fn fallback(normal: Option<Vec3>) -> (Vec3, f32) {
     (normal.map_or(NO_NORMAL_TANGENT, fallback_tangent), 1.0)
 }
 
-use crate::inherit;
-use crate::mesh::{Mesh, Output};
-use crate::options::DegeneratePolicy;
-use crate::report::Report;
-use crate::scratch::{flag, Scratch};
+/// Number of vertices whose normal is not unit length within 1e-3 (zero and non-finite included).
+pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
+    (0..mesh.vertex_count())
+        .filter(|&v| !VertexNormal::new(mesh.normals.get(v)).was_unit)
+        .count()
+}
 
 /// Writes every vertex's result for policies SKIP, INHERIT and REJECT and counts what it did.
 ///
@@ -93,15 +95,16 @@ pub fn write_all(
     let defer_missing = policy == DegeneratePolicy::Inherit && mesh.texcoords.is_some();
     let mut deferred = 0usize;
     for v in 0..mesh.vertex_count() {
-        let raw_normal = mesh.normals.get(v);
-        report.abnormal_normals += usize::from(!is_unit(raw_normal));
-        let normal = unit_normal(raw_normal);
-        match resolve(&scratch.sums[v], normal) {
+        let normal = VertexNormal::new(mesh.normals.get(v));
+        report.abnormal_normals += usize::from(!normal.was_unit);
+        match resolve(&scratch.sums[v], normal.unit) {
             Resolved::Measured(t, w) => {
-                write_vertex(output, v, t, w, normal);
-                scratch.sums[v].primary = t.to_array();
-                scratch.sums[v].weight = w;
-                scratch.flags[v] |= flag::RESOLVED;
+                write_vertex(output, v, t, w, normal.unit);
+                if defer_missing {
+                    scratch.sums[v].primary = t.to_array();
+                    scratch.sums[v].weight = w;
+                    scratch.flags[v] |= flag::RESOLVED;
+                }
             }
             Resolved::Missing if defer_missing => {
                 scratch.sums[v].secondary = [0.0; 3];
@@ -110,8 +113,8 @@ pub fn write_all(
                 deferred += 1;
             }
             Resolved::Missing => {
-                let (t, w) = fallback(normal);
-                write_vertex(output, v, t, w, normal);
+                let (t, w) = fallback(normal.unit);
+                write_vertex(output, v, t, w, normal.unit);
                 report.fallback_vertices += 1;
             }
         }
@@ -124,7 +127,7 @@ pub fn write_all(
         if scratch.flags[v] & flag::DEFERRED == 0 {
             continue;
         }
-        let normal = unit_normal(mesh.normals.get(v));
+        let normal = VertexNormal::new(mesh.normals.get(v)).unit;
         let (t, w) = if scratch.flags[v] & flag::RESOLVED != 0 {
             (Vec3::from_array(scratch.sums[v].primary), scratch.sums[v].weight)
         } else {
@@ -139,6 +142,6 @@ pub fn write_all(
 /// orthogonal to `t` stands in for `n`, so the bitangent is still a unit vector orthogonal to `t`.
 #[inline(always)]
 fn write_vertex(output: &mut Output, v: usize, t: Vec3, w: f32, normal: Option<Vec3>) {
-    let n = normal.unwrap_or_else(|| crate::frame::fallback_tangent(t));
+    let n = normal.unwrap_or_else(|| fallback_tangent(t));
     output.write(v, t, w, n);
 }
