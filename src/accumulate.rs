@@ -162,19 +162,27 @@ fn corner_contribution(method: Method, face: &FaceTangent, k: usize, normal: Vec
 /// Adds each triangle's tangent to its corners, split by the corner's handedness (the UV
 /// orientation relative to the vertex normal), so that a vertex on a mirror fold can keep one
 /// side's frame instead of a cancelled sum. Degenerate triangles only mark their vertices used.
-pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch, report: &mut Report) -> Result<(), Error> {
+pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Result<Report, Error> {
+    let mut report = Report::default();
     let v_sign = if options.flip_v { -1.0 } else { 1.0 };
     for t in 0..mesh.indices.triangle_count(mesh.vertex_count())? {
         let corners = mesh.checked_triangle(t)?;
+        let slots = corners.map(|v| scratch.slot(v));
+        if slots == [None; 3] {
+            continue;
+        }
         let p = corners.map(|v| Vec3::from_array(mesh.positions.get(v)));
         let face = mesh
             .texcoords
             .and_then(|uvs| face_tangent(&p, texcoords_of(uvs, corners), v_sign, options.degenerate_threshold));
         let Some(face) = face else {
-            if mesh.texcoords.is_some() {
+            if mesh.texcoords.is_some() && slots[0].is_some() {
                 report.note_degenerate(t);
             }
-            corners.iter().for_each(|&v| scratch.flags[v] |= flag::REFERENCED);
+            slots
+                .into_iter()
+                .flatten()
+                .for_each(|slot| scratch.flags[slot] |= flag::REFERENCED);
             continue;
         };
         let orientation = if face.positive_uv {
@@ -182,14 +190,17 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch, report:
         } else {
             flag::NEGATIVE_UV
         };
-        for (k, &v) in corners.iter().enumerate() {
+        for (k, (&v, slot)) in corners.iter().zip(slots).enumerate() {
+            let Some(slot) = slot else {
+                continue;
+            };
             let normal = Vec3::from_array(mesh.normals.get(v));
             let (contribution, weight) = corner_contribution(options.method, &face, k, normal);
             // A normal facing away from the winding turns the frame's handedness; a non-finite
             // normal says nothing about it.
             let facing_away = normal.is_finite() && normal.dot(face.face_normal) < 0.0;
             let right_handed = face.positive_uv != facing_away;
-            let sums = &mut scratch.sums[v];
+            let sums = &mut scratch.sums[slot];
             let side = if right_handed {
                 &mut sums.primary
             } else {
@@ -197,10 +208,10 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch, report:
             };
             *side = (Vec3::from_array(*side) + contribution).to_array();
             sums.weight += weight;
-            scratch.flags[v] |= flag::REFERENCED | orientation;
+            scratch.flags[slot] |= flag::REFERENCED | orientation;
         }
     }
-    Ok(())
+    Ok(report)
 }
 
 #[inline(always)]

@@ -1,13 +1,13 @@
 //! The entry point: one call from the caller's buffers to written tangents.
 #![forbid(unsafe_code)]
 
-use crate::mesh::{Mesh, Output};
+use crate::mesh::{Mesh, Output, OutputPart};
 use crate::options::{DegeneratePolicy, Options};
 use crate::report::{count_flags, Report};
-use crate::scratch::{self, OwnedScratch};
+use crate::scratch::{self, OwnedScratch, Scratch};
 use crate::status::Error;
 use crate::strided::Footprint;
-use crate::{accumulate, legacy, resolve, validate};
+use crate::{accumulate, legacy, parallel, resolve, validate};
 
 /// Computes a unit tangent and handedness for every vertex of `mesh` into `output`.
 ///
@@ -73,14 +73,21 @@ pub fn generate_into(
         }
     };
 
-    // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners.
-    let mut found = Report::default();
-    match (options.degenerate_policy, mesh.texcoords) {
-        (DegeneratePolicy::Legacy, Some(uvs)) => {
-            legacy::accumulate(mesh, uvs, options.flip_v, &mut scratch, &mut found)?
-        }
-        _ => accumulate::accumulate(mesh, options, &mut scratch, &mut found)?,
-    }
+    // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners;
+    //    with several workers, each adds to its own range of vertices, in triangle order.
+    let workers = parallel::worker_count(options.threads, vertex_count);
+    let accumulate_range = |part: &mut Scratch| match (options.degenerate_policy, mesh.texcoords) {
+        (DegeneratePolicy::Legacy, Some(uvs)) => legacy::accumulate(mesh, uvs, options.flip_v, part),
+        _ => accumulate::accumulate(mesh, options, part),
+    };
+    let mut found = if workers == 1 {
+        accumulate_range(&mut scratch)?
+    } else {
+        let ends = parallel::range_ends(vertex_count, workers);
+        parallel::merge(parallel::run(scratch.split(&ends), |mut part| {
+            accumulate_range(&mut part)
+        }))?
+    };
     count_flags(scratch.flags, &mut found);
 
     // 4. REJECT refuses the mesh before anything is written, naming the first bad triangle.
@@ -91,9 +98,35 @@ pub fn generate_into(
     }
 
     // 5. Per vertex: Gram-Schmidt against the normal, handedness in w, fallbacks; write.
-    match options.degenerate_policy {
-        DegeneratePolicy::Legacy => legacy::resolve(mesh, &scratch, output),
-        policy => resolve::write_all(mesh, policy, &mut scratch, output, &mut found),
+    let policy = options.degenerate_policy;
+    let write_range = |part: &mut Scratch, out: &mut OutputPart| {
+        let mut written = Report::default();
+        let deferred = match policy {
+            DegeneratePolicy::Legacy => {
+                legacy::resolve(mesh, part, out);
+                0
+            }
+            _ => resolve::write_measured(mesh, policy, part, out, &mut written),
+        };
+        (written, deferred)
+    };
+    let (written, deferred) = if workers == 1 {
+        write_range(&mut scratch, &mut output.whole())
+    } else {
+        let ends = parallel::range_ends(vertex_count, workers);
+        let parts = scratch.split(&ends).into_iter().zip(output.split(&ends)).collect();
+        parallel::run(parts, |(mut part, mut out)| write_range(&mut part, &mut out))
+            .into_iter()
+            .fold((Report::default(), 0), |(mut total, deferred), (written, more)| {
+                total.merge(&written);
+                (total, deferred + more)
+            })
+    };
+    found.merge(&written);
+
+    // 6. INHERIT: vertices left without a tangent take their neighbours', ring by ring.
+    if deferred > 0 {
+        resolve::write_inherited(mesh, &mut scratch, &mut output.whole(), &mut found);
     }
     *report = found;
     Ok(())

@@ -17,6 +17,10 @@ use crate::scratch::{flag, Scratch};
 /// the triangles within a ring. A ring costs one pass over the triangles; the number of rings is
 /// the widest distance from an unresolved vertex to a resolved one.
 pub fn propagate(mesh: &Mesh, scratch: &mut Scratch) -> usize {
+    assert!(
+        scratch.first == 0 && scratch.flags.len() == mesh.vertex_count(),
+        "needs the whole mesh's scratch"
+    );
     let triangle_count = mesh.indices.triangle_count(mesh.vertex_count()).unwrap_or(0);
     let mut inherited = 0;
     loop {

@@ -7,24 +7,30 @@
 
 use glam::Vec3;
 
-use crate::mesh::{Mesh, Output};
+use crate::mesh::{Mesh, OutputPart};
 use crate::report::Report;
 use crate::scratch::{flag, Scratch};
 use crate::status::Error;
+use crate::strided::Strided;
 
 /// First loop of the listing: per triangle, solve `[T B] = [Q1 Q2] * inverse([s1 t1; s2 t2])`
 /// and add `sdir` (dP/du) to `tan1`, `tdir` (dP/dv) to `tan2` of its three vertices, in triangle
-/// order. Also checks every index and notes zero-determinant or non-finite triangles.
+/// order, for the vertices `scratch` holds. Also checks every index, and counts the
+/// zero-determinant or non-finite triangles whose first vertex it holds.
 pub fn accumulate(
     mesh: &Mesh,
-    texcoords: crate::strided::Strided<[f32; 2]>,
+    texcoords: Strided<[f32; 2]>,
     flip_v: bool,
     scratch: &mut Scratch,
-    report: &mut Report,
-) -> Result<(), Error> {
+) -> Result<Report, Error> {
+    let mut report = Report::default();
     let v_sign = if flip_v { -1.0 } else { 1.0 };
     for a in 0..mesh.indices.triangle_count(mesh.vertex_count())? {
         let [i1, i2, i3] = mesh.checked_triangle(a)?;
+        let slots = [i1, i2, i3].map(|i| scratch.slot(i));
+        if slots == [None; 3] {
+            continue;
+        }
         let (v1, v2, v3) = (mesh.positions.get(i1), mesh.positions.get(i2), mesh.positions.get(i3));
         let (w1, w2, w3) = (texcoords.get(i1), texcoords.get(i2), texcoords.get(i3));
 
@@ -55,7 +61,9 @@ pub fn accumulate(
 
         let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2].iter().all(|x| x.is_finite());
         let orientation = if det == 0.0 || !finite {
-            report.note_degenerate(a);
+            if slots[0].is_some() {
+                report.note_degenerate(a);
+            }
             0
         } else if det > 0.0 {
             flag::POSITIVE_UV
@@ -63,25 +71,26 @@ pub fn accumulate(
             flag::NEGATIVE_UV
         };
 
-        for i in [i1, i2, i3] {
-            let sums = &mut scratch.sums[i];
+        for slot in slots.into_iter().flatten() {
+            let sums = &mut scratch.sums[slot];
             for k in 0..3 {
                 sums.primary[k] += sdir[k];
                 sums.secondary[k] += tdir[k];
             }
-            scratch.flags[i] |= flag::REFERENCED | orientation;
+            scratch.flags[slot] |= flag::REFERENCED | orientation;
         }
     }
-    Ok(())
+    Ok(report)
 }
 
 /// Second loop of the listing: `T' = normalize(t - n * dot(n, t))`,
 /// `w = dot(cross(n, t), tan2) < 0 ? -1 : 1`.
-pub fn resolve(mesh: &Mesh, scratch: &Scratch, output: &mut Output) {
-    for a in 0..mesh.vertex_count() {
+pub fn resolve(mesh: &Mesh, scratch: &Scratch, output: &mut OutputPart) {
+    for (slot, sums) in scratch.sums.iter().enumerate() {
+        let a = scratch.first + slot;
         let n = Vec3::from_array(mesh.normals.get(a));
-        let t = Vec3::from_array(scratch.sums[a].primary);
-        let tan2 = Vec3::from_array(scratch.sums[a].secondary);
+        let t = Vec3::from_array(sums.primary);
+        let tan2 = Vec3::from_array(sums.secondary);
 
         let orthogonal = t - n * dot(n, t);
         let tangent = orthogonal * (1.0 / dot(orthogonal, orthogonal).sqrt());

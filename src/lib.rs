@@ -26,6 +26,7 @@ mod inherit;
 mod legacy;
 mod mesh;
 mod options;
+mod parallel;
 mod report;
 mod resolve;
 mod scratch;

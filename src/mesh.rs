@@ -91,12 +91,47 @@ impl<'a> Mesh<'a> {
 }
 
 impl<'a> Output<'a> {
+    /// The whole output as one part starting at vertex 0.
+    pub(crate) fn whole(&mut self) -> OutputPart<'_> {
+        OutputPart {
+            tangents: self.tangents.reborrow(),
+            bitangents: self.bitangents.as_mut().map(StridedMut::reborrow),
+            first: 0,
+        }
+    }
+
+    /// Disjoint parts for consecutive vertex ranges (exclusive `ends`), one per worker.
+    pub(crate) fn split(&mut self, ends: &[usize]) -> Vec<OutputPart<'_>> {
+        let tangents = self.tangents.split(ends);
+        let mut bitangents = self.bitangents.as_mut().map(|b| b.split(ends).into_iter());
+        let starts = core::iter::once(0).chain(ends.iter().copied());
+        tangents
+            .into_iter()
+            .zip(starts)
+            .map(|(tangents, first)| OutputPart {
+                tangents,
+                bitangents: bitangents.as_mut().and_then(Iterator::next),
+                first,
+            })
+            .collect()
+    }
+}
+
+/// The output of one consecutive range of vertices.
+pub(crate) struct OutputPart<'a> {
+    tangents: StridedMut<'a, [f32; 4]>,
+    bitangents: Option<StridedMut<'a, [f32; 3]>>,
+    first: usize,
+}
+
+impl OutputPart<'_> {
     /// Writes vertex `v`: tangent `(t, w)` and, when wanted, the bitangent `w * cross(n, t)`.
     #[inline(always)]
     pub(crate) fn write(&mut self, v: usize, t: glam::Vec3, w: f32, n: glam::Vec3) {
-        self.tangents.set(v, [t.x, t.y, t.z, w]);
+        let slot = v - self.first;
+        self.tangents.set(slot, [t.x, t.y, t.z, w]);
         if let Some(bitangents) = &mut self.bitangents {
-            bitangents.set(v, (n.cross(t) * w).to_array());
+            bitangents.set(slot, (n.cross(t) * w).to_array());
         }
     }
 }

@@ -37,6 +37,17 @@ impl Default for Report {
 }
 
 impl Report {
+    /// Adds the counts another worker found over its own vertices and triangles.
+    pub(crate) fn merge(&mut self, other: &Report) {
+        self.degenerate_triangles += other.degenerate_triangles;
+        self.first_degenerate_triangle = self.first_degenerate_triangle.min(other.first_degenerate_triangle);
+        self.fallback_vertices += other.fallback_vertices;
+        self.mirrored_vertices += other.mirrored_vertices;
+        self.unreferenced_vertices += other.unreferenced_vertices;
+        self.inherited_vertices += other.inherited_vertices;
+        self.abnormal_normals += other.abnormal_normals;
+    }
+
     /// Records triangle `t` as degenerate.
     pub(crate) fn note_degenerate(&mut self, t: usize) {
         self.degenerate_triangles += 1;

@@ -5,7 +5,7 @@ use glam::Vec3;
 
 use crate::frame::{fallback_tangent, length_and_direction, orthonormalize, NO_NORMAL_TANGENT};
 use crate::inherit;
-use crate::mesh::{Mesh, Output};
+use crate::mesh::{Mesh, OutputPart};
 use crate::options::DegeneratePolicy;
 use crate::report::Report;
 use crate::scratch::{flag, Scratch, VertexSums};
@@ -80,36 +80,38 @@ pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
         .count()
 }
 
-/// Writes every vertex's result for policies SKIP, INHERIT and REJECT and counts what it did.
+/// Writes the result of every vertex `scratch` holds for policies SKIP, INHERIT and REJECT and
+/// counts what it did; returns how many vertices wait for [`write_inherited`].
 ///
-/// Measured vertices are written in one pass. Under INHERIT the others wait for
-/// [`inherit::propagate`] and a second pass writes them; under SKIP (and REJECT, which reaches
-/// here only without degenerate triangles) they get the fallback frame at once.
-pub fn write_all(
+/// Measured vertices are written at once. Under INHERIT the others wait for their neighbours;
+/// under SKIP (and REJECT, which reaches here only without degenerate triangles) they get the
+/// fallback frame at once.
+pub fn write_measured(
     mesh: &Mesh,
     policy: DegeneratePolicy,
     scratch: &mut Scratch,
-    output: &mut Output,
+    output: &mut OutputPart,
     report: &mut Report,
-) {
+) -> usize {
     let defer_missing = policy == DegeneratePolicy::Inherit && mesh.texcoords.is_some();
     let mut deferred = 0usize;
-    for v in 0..mesh.vertex_count() {
+    for (slot, sums) in scratch.sums.iter_mut().enumerate() {
+        let v = scratch.first + slot;
         let normal = VertexNormal::new(mesh.normals.get(v));
         report.abnormal_normals += usize::from(!normal.was_unit);
-        match resolve(&scratch.sums[v], normal.unit) {
+        match resolve(sums, normal.unit) {
             Resolved::Measured(t, w) => {
                 write_vertex(output, v, t, w, normal.unit);
                 if defer_missing {
-                    scratch.sums[v].primary = t.to_array();
-                    scratch.sums[v].weight = w;
-                    scratch.flags[v] |= flag::RESOLVED;
+                    sums.primary = t.to_array();
+                    sums.weight = w;
+                    scratch.flags[slot] |= flag::RESOLVED;
                 }
             }
             Resolved::Missing if defer_missing => {
-                scratch.sums[v].secondary = [0.0; 3];
-                scratch.sums[v].weight = 0.0;
-                scratch.flags[v] |= flag::DEFERRED;
+                sums.secondary = [0.0; 3];
+                sums.weight = 0.0;
+                scratch.flags[slot] |= flag::DEFERRED;
                 deferred += 1;
             }
             Resolved::Missing => {
@@ -119,9 +121,13 @@ pub fn write_all(
             }
         }
     }
-    if deferred == 0 {
-        return;
-    }
+    deferred
+}
+
+/// Policy INHERIT, after [`write_measured`] deferred some vertices: spreads tangents into them
+/// from their neighbours ([`inherit::propagate`], on the whole mesh), then writes them, with the
+/// fallback frame where nothing reached.
+pub fn write_inherited(mesh: &Mesh, scratch: &mut Scratch, output: &mut OutputPart, report: &mut Report) {
     report.inherited_vertices = inherit::propagate(mesh, scratch);
     for v in 0..mesh.vertex_count() {
         if scratch.flags[v] & flag::DEFERRED == 0 {
@@ -141,7 +147,7 @@ pub fn write_all(
 /// Writes `(t, w)` and the bitangent `w * cross(n, t)`; without a usable normal, any unit vector
 /// orthogonal to `t` stands in for `n`, so the bitangent is still a unit vector orthogonal to `t`.
 #[inline(always)]
-fn write_vertex(output: &mut Output, v: usize, t: Vec3, w: f32, normal: Option<Vec3>) {
+fn write_vertex(output: &mut OutputPart, v: usize, t: Vec3, w: f32, normal: Option<Vec3>) {
     let n = normal.unwrap_or_else(|| fallback_tangent(t));
     output.write(v, t, w, n);
 }

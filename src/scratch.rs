@@ -51,12 +51,42 @@ pub fn scratch_size(vertex_count: usize) -> Option<usize> {
         .checked_add(align_of::<VertexSums>() - 1)
 }
 
-/// The per-vertex working arrays of one call.
+/// The per-vertex working arrays of one call, or of one worker's consecutive range of vertices.
 pub struct Scratch<'s> {
-    /// Running sums, one per vertex.
+    /// Running sums, one per vertex of the range.
     pub sums: &'s mut [VertexSums],
-    /// Flag bits, one byte per vertex.
+    /// Flag bits, one byte per vertex of the range.
     pub flags: &'s mut [u8],
+    /// The first vertex of the range: vertex `v` is at `v - first`.
+    pub first: usize,
+}
+
+impl<'s> Scratch<'s> {
+    /// Where vertex `v` sits in this range's arrays, if the range holds it.
+    #[inline(always)]
+    pub fn slot(&self, v: usize) -> Option<usize> {
+        let slot = v.wrapping_sub(self.first);
+        (slot < self.flags.len()).then_some(slot)
+    }
+
+    /// The same arrays cut at the vertices in `ends` (exclusive ends, increasing, the last the
+    /// vertex count), one part per worker.
+    pub fn split(&mut self, ends: &[usize]) -> Vec<Scratch<'_>> {
+        let (mut sums, mut flags): (&mut [VertexSums], &mut [u8]) = (&mut *self.sums, &mut *self.flags);
+        let mut first = self.first;
+        let mut parts = Vec::with_capacity(ends.len());
+        for &end in ends {
+            let (part_sums, rest_sums) = core::mem::take(&mut sums).split_at_mut(end - first);
+            let (part_flags, rest_flags) = core::mem::take(&mut flags).split_at_mut(end - first);
+            parts.push(Scratch {
+                sums: part_sums,
+                flags: part_flags,
+                first,
+            });
+            (sums, flags, first) = (rest_sums, rest_flags, end);
+        }
+        parts
+    }
 }
 
 /// Heap storage for a call that brings no scratch.
@@ -89,6 +119,7 @@ impl OwnedScratch {
         Scratch {
             sums: &mut self.sums,
             flags: &mut self.flags,
+            first: 0,
         }
     }
 }
@@ -99,7 +130,7 @@ pub fn carve(bytes: &mut [u8], vertex_count: usize) -> Result<Scratch<'_>, Error
     let flags = rest.get_mut(..vertex_count).ok_or(Error::ScratchTooSmall)?;
     sums.fill(VertexSums::default());
     flags.fill(0);
-    Ok(Scratch { sums, flags })
+    Ok(Scratch { sums, flags, first: 0 })
 }
 
 #[cfg(test)]

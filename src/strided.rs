@@ -201,6 +201,12 @@ impl<'a, T: Element> Strided<'a, T> {
     }
 }
 
+// SAFETY: a `Strided` only reads, and its constructors require that nothing writes the elements
+// while it lives, so reading them from several threads at once is sound.
+unsafe impl<T: Element> Sync for Strided<'_, T> {}
+// SAFETY: as above; moving a read-only view to another thread changes nothing.
+unsafe impl<T: Element> Send for Strided<'_, T> {}
+
 /// A write-only strided view of `len` elements of type `T`.
 pub struct StridedMut<'a, T: Element> {
     base: *mut u8,
@@ -278,7 +284,34 @@ impl<'a, T: Element> StridedMut<'a, T> {
             count: self.len,
         }
     }
+
+    /// The same view, borrowed for a shorter time.
+    pub(crate) fn reborrow(&mut self) -> StridedMut<'_, T> {
+        // SAFETY: the same elements, exclusively borrowed through `self` for the new lifetime.
+        unsafe { StridedMut::from_raw(self.base, self.stride, self.len) }
+    }
+
+    /// Disjoint views of consecutive element ranges covering the view, for writing from several
+    /// threads; `ends` are the exclusive ends of the ranges, increasing, the last at most `len`.
+    pub(crate) fn split(&mut self, ends: &[usize]) -> Vec<StridedMut<'_, T>> {
+        let mut start = 0;
+        ends.iter()
+            .map(|&end| {
+                assert!(start <= end && end <= self.len, "split ranges out of order");
+                // SAFETY: elements start..end lie inside this view, the ranges are disjoint, and
+                // the parts borrow `self` mutably, so nothing else writes them meanwhile.
+                let part =
+                    unsafe { StridedMut::from_raw(self.base.add(start * self.stride), self.stride, end - start) };
+                start = end;
+                part
+            })
+            .collect()
+    }
 }
+
+// SAFETY: a `StridedMut` is the only writer of its elements (its constructors require it), so it
+// may move to another thread.
+unsafe impl<T: Element> Send for StridedMut<'_, T> {}
 
 /// Types for which every byte pattern of their size is a valid value.
 ///

@@ -37,13 +37,16 @@ pub fn check_overlaps(mesh: &Mesh, output: &Output, scratch: Option<Footprint>) 
         mesh.texcoords.map(|uvs| uvs.footprint()),
         mesh.indices.footprint(),
     ];
-    let outputs = [
+    let written = [
         Some(output.tangents.footprint()),
         output.bitangents.as_ref().map(|b| b.footprint()),
+        scratch,
     ];
-    let written: Vec<Footprint> = outputs.into_iter().chain([scratch]).flatten().collect();
     for (k, out) in written.iter().enumerate() {
-        let others = inputs.iter().flatten().chain(&written[k + 1..]);
+        let Some(out) = out else {
+            continue;
+        };
+        let others = inputs.iter().chain(&written[k + 1..]).flatten();
         if others.into_iter().any(|other| out.overlaps(other)) {
             return Err(Error::Overlap);
         }

@@ -1,0 +1,91 @@
+//! With caller scratch (and one thread), a call makes no heap allocation at all.
+
+#[path = "common/mod.rs"]
+mod common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use common::cases::{mirror_fold, quantized_uv_sphere, unit_quad, Case};
+use tbasis::{scratch_size, DegeneratePolicy, Method, Options, Output, Report, StridedMut};
+
+/// Counts every allocation the process makes.
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by one call with caller scratch; the result must be Ok.
+fn allocations_during_call(case: &Case, options: &Options) -> usize {
+    let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
+    let mut bitangents = vec![[0.0f32; 3]; case.vertex_count()];
+    let mut scratch = vec![0u8; scratch_size(case.vertex_count()).unwrap()];
+    let mesh = case.mesh();
+    let mut output = Output {
+        tangents: StridedMut::from_slice(&mut tangents),
+        bitangents: Some(StridedMut::from_slice(&mut bitangents)),
+    };
+    let mut report = Report::default();
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let result = tbasis::generate_into(&mesh, options, &mut output, Some(&mut scratch), &mut report);
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    assert_eq!(result, Ok(()), "{}", case.name);
+    after - before
+}
+
+#[test]
+fn caller_scratch_means_no_allocation() {
+    // The INHERIT cases need propagation, the mirror fold both handedness sums.
+    let cases = [unit_quad(), mirror_fold(), quantized_uv_sphere()];
+    for case in &cases {
+        for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
+            for policy in [
+                DegeneratePolicy::Legacy,
+                DegeneratePolicy::Skip,
+                DegeneratePolicy::Inherit,
+            ] {
+                let options = Options {
+                    method,
+                    degenerate_policy: policy,
+                    ..Options::default()
+                };
+                assert_eq!(
+                    allocations_during_call(case, &options),
+                    0,
+                    "{} {method:?} {policy:?}",
+                    case.name
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_counter_sees_the_library_allocate_without_caller_scratch() {
+    // Proves the counter works: without caller scratch the library allocates its own.
+    let case = unit_quad();
+    let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
+    let mut output = Output {
+        tangents: StridedMut::from_slice(&mut tangents),
+        bitangents: None,
+    };
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    tbasis::generate(&case.mesh(), &Options::default(), &mut output).unwrap();
+    assert!(ALLOCATIONS.load(Ordering::SeqCst) > before);
+}

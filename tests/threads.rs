@@ -1,0 +1,80 @@
+//! `threads = N` changes nothing but speed: results and reports are bit-identical for every N.
+
+#[path = "common/mod.rs"]
+mod common;
+
+use common::cases::{quantized_uv_sphere, Case};
+use common::scenes::{build, SceneSpec};
+use tbasis::{DegeneratePolicy, Method, Options};
+
+/// A jittered, warped torus large enough for four workers.
+fn torus() -> Case {
+    let scene = build(&SceneSpec::torus(140_000));
+    Case {
+        name: scene.name,
+        positions: scene.positions,
+        normals: scene.normals,
+        texcoords: Some(scene.texcoords),
+        indices: Some(scene.indices),
+    }
+}
+
+fn bits<const N: usize>(values: &[[f32; N]]) -> Vec<u32> {
+    values.iter().flatten().map(|x| x.to_bits()).collect()
+}
+
+fn assert_same_for_every_thread_count(case: &Case, options: Options, thread_counts: &[u32]) {
+    let (tangents, bitangents, result) = case.run(&Options { threads: 1, ..options });
+    for &threads in thread_counts {
+        let (t, b, r) = case.run(&Options { threads, ..options });
+        let what = format!(
+            "{} {:?} {:?} threads={threads}",
+            case.name, options.method, options.degenerate_policy
+        );
+        assert_eq!(r, result, "{what}: result");
+        assert!(bits(&t) == bits(&tangents), "{what}: tangents differ");
+        assert!(bits(&b) == bits(&bitangents), "{what}: bitangents differ");
+    }
+}
+
+#[test]
+fn every_method_and_policy_is_bit_identical_across_thread_counts() {
+    let cases = [torus(), quantized_uv_sphere()];
+    let methods = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform];
+    let policies = [
+        DegeneratePolicy::Legacy,
+        DegeneratePolicy::Skip,
+        DegeneratePolicy::Inherit,
+        DegeneratePolicy::Reject,
+    ];
+    for case in &cases {
+        assert!(
+            case.vertex_count() >= 2 * 32 * 1024,
+            "{} is too small to split",
+            case.name
+        );
+        for method in methods {
+            for policy in policies {
+                let options = Options {
+                    method,
+                    degenerate_policy: policy,
+                    ..Options::default()
+                };
+                assert_same_for_every_thread_count(case, options, &[4]);
+            }
+        }
+        assert_same_for_every_thread_count(case, Options::default(), &[2, 3, 8]);
+    }
+}
+
+#[test]
+fn the_quantized_sphere_exercises_degenerate_triangles_on_several_workers() {
+    // Without degenerate triangles split across workers, the test above would prove less.
+    let case = quantized_uv_sphere();
+    let (_, _, result) = case.run(&Options {
+        threads: 4,
+        ..Options::default()
+    });
+    let report = result.expect("INHERIT accepts the mesh");
+    assert!(report.degenerate_triangles > 1000 && report.inherited_vertices + report.fallback_vertices > 0);
+}
