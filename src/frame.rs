@@ -52,6 +52,13 @@ pub fn orthonormalize(tangent: Vec3, normal: Option<Vec3>) -> Option<(f32, Vec3)
     let Some(n) = normal else {
         return length_and_direction(tangent);
     };
+    let squared = tangent.length_squared();
+    if !(squared > 1e-30 && squared < 1e30) {
+        // Far from unit scale (a subnormal sum from tiny triangles, or a huge one), the products
+        // below would underflow or overflow: work on the direction and scale the length back.
+        let (length, direction) = length_and_direction(tangent)?;
+        return orthonormalize(direction, normal).map(|(share, unit)| (share * length, unit));
+    }
     let along = n.dot(tangent);
     let (length, direction) = length_and_direction(tangent - n * along)?;
     if along.abs() <= 8.0 * length {
@@ -111,6 +118,11 @@ mod tests {
             let (_, unit) = orthonormalize(t, Some(n)).unwrap();
             assert!(unit.dot(n).abs() <= 1e-6, "{t}: {}", unit.dot(n));
             assert!((unit.length() - 1.0).abs() <= 1e-6);
+        }
+        // Sums near the float limits, subnormal ones included, come out orthogonal too.
+        for scale in [1e-42f32, 1e-36, 1e30] {
+            let (_, unit) = orthonormalize(Vec3::new(0.8, -0.4, -0.4) * scale, Some(n)).unwrap();
+            assert!(unit.dot(n).abs() <= 1e-6, "{scale}: {}", unit.dot(n));
         }
         // A tangent along the normal leaves only rounding residue, which callers measure as tiny.
         assert!(orthonormalize(n * 2.0, Some(n)).is_none_or(|(length, _)| length < 1e-6));
