@@ -10,6 +10,9 @@
 #[allow(dead_code)]
 #[path = "../tests/common/load.rs"]
 mod load;
+#[path = "../tests/common/run.rs"]
+#[allow(dead_code)]
+mod run;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -18,7 +21,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use load::{MeshFile, Primitive};
-use tbasis::{DegeneratePolicy, Indices, Mesh, Options, Output, Report, Strided, StridedMut};
+use tbasis::{DegeneratePolicy, Report};
 
 const POLICIES: [(DegeneratePolicy, &str); 4] = [
     (DegeneratePolicy::Skip, "SKIP"),
@@ -70,35 +73,13 @@ impl Totals {
 /// Runs the library on one primitive; returns the result, the report (also filled when REJECT
 /// refuses) and how many vertices got a non-finite tangent.
 fn run(primitive: &Primitive, policy: DegeneratePolicy) -> (Result<(), tbasis::Error>, Report, usize) {
-    let mesh = Mesh {
-        positions: Strided::from_slice(&primitive.positions),
-        normals: Strided::from_slice(&primitive.normals),
-        texcoords: primitive.texcoords.as_deref().map(Strided::from_slice),
-        indices: Indices::U32(Strided::from_slice(&primitive.indices)),
-    };
-    let options = Options {
-        degenerate_policy: policy,
-        flip_v: primitive.v_down,
-        ..Options::default()
-    };
-    let mut tangents = vec![[0.0f32; 4]; primitive.vertex_count()];
-    let mut report = Report::default();
-    let result = tbasis::generate_into(
-        &mesh,
-        &options,
-        &mut Output {
-            tangents: StridedMut::from_slice(&mut tangents),
-            bitangents: None,
-        },
-        None,
-        &mut report,
-    );
+    let run = run::run_mesh(&primitive.mesh(), primitive.vertex_count(), &primitive.options(policy));
     // Nothing is written on failure, so only a successful call can leave non-finite tangents.
-    let non_finite = match result {
-        Ok(()) => tangents.iter().filter(|t| !t.iter().all(|x| x.is_finite())).count(),
+    let non_finite = match run.result {
+        Ok(()) => run.tangents.iter().filter(|t| !t.iter().all(|x| x.is_finite())).count(),
         Err(_) => 0,
     };
-    (result, report, non_finite)
+    (run.result, run.report, non_finite)
 }
 
 fn table(files: &[MeshFile]) -> String {

@@ -97,13 +97,15 @@ typedef struct tbasis_options {
   uint32_t degenerate_policy;
   // `TBASIS_FLAG_*` bits; unknown bits are an error.
   uint32_t flags;
-  // Upper bound on threads; 0 or 1: the calling thread only.
+  // Upper bound on threads; 0 or 1: the calling thread only. Meshes get one worker per 32768
+  // vertices at most; results are bit-identical whatever the value.
   uint32_t threads;
   // UV and position shape quality (1 = equilateral, 0 = collapsed) below which a triangle is
   // degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
   float degenerate_threshold;
   // Optional caller memory of `scratch_size` bytes, any alignment, not shared with any other
-  // buffer; the call then allocates nothing. NULL: the library allocates.
+  // buffer; with `threads` 0 or 1 the call then allocates nothing. Working memory: its contents
+  // after a call, successful or not, mean nothing. NULL: the library allocates.
   void *scratch;
   // Size of `scratch` in bytes; at least `tbasis_scratch_size(mesh, options)`.
   size_t scratch_size;

@@ -128,13 +128,15 @@ pub struct tbasis_options {
     pub degenerate_policy: u32,
     /// `TBASIS_FLAG_*` bits; unknown bits are an error.
     pub flags: u32,
-    /// Upper bound on threads; 0 or 1: the calling thread only.
+    /// Upper bound on threads; 0 or 1: the calling thread only. Meshes get one worker per 32768
+    /// vertices at most; results are bit-identical whatever the value.
     pub threads: u32,
     /// UV and position shape quality (1 = equilateral, 0 = collapsed) below which a triangle is
     /// degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
     pub degenerate_threshold: f32,
     /// Optional caller memory of `scratch_size` bytes, any alignment, not shared with any other
-    /// buffer; the call then allocates nothing. NULL: the library allocates.
+    /// buffer; with `threads` 0 or 1 the call then allocates nothing. Working memory: its contents
+    /// after a call, successful or not, mean nothing. NULL: the library allocates.
     pub scratch: *mut c_void,
     /// Size of `scratch` in bytes; at least `tbasis_scratch_size(mesh, options)`.
     pub scratch_size: usize,

@@ -14,10 +14,8 @@ use std::time::Instant;
 
 use common::invariants::check_invariants;
 use common::load::{self, MeshFile, Primitive};
-use tbasis::{DegeneratePolicy, Error, Indices, Mesh, Options, Output, Report, Strided, StridedMut};
-
-/// What the outputs hold before a call: a call that fails must leave it there.
-const UNTOUCHED: f32 = 7.0;
+use common::run::{run_mesh, Run};
+use tbasis::{DegeneratePolicy, Error, Report};
 
 /// One thing found wrong.
 #[derive(Clone, Debug)]
@@ -27,47 +25,11 @@ struct Failure {
     message: String,
 }
 
-/// One call's outcome and outputs.
-struct Run {
-    result: Result<(), Error>,
-    report: Report,
-    tangents: Vec<[f32; 4]>,
-    bitangents: Vec<[f32; 3]>,
-}
-
-impl Run {
-    fn untouched(&self) -> bool {
-        self.tangents
-            .iter()
-            .flatten()
-            .chain(self.bitangents.iter().flatten())
-            .all(|&x| x == UNTOUCHED)
-    }
-}
-
 /// Runs the library on one primitive; a panic becomes an `Err` naming it.
 fn run(primitive: &Primitive, policy: DegeneratePolicy) -> Result<Run, String> {
-    let mesh = Mesh {
-        positions: Strided::from_slice(&primitive.positions),
-        normals: Strided::from_slice(&primitive.normals),
-        texcoords: primitive.texcoords.as_deref().map(Strided::from_slice),
-        indices: Indices::U32(Strided::from_slice(&primitive.indices)),
-    };
-    let options = Options {
-        degenerate_policy: policy,
-        flip_v: primitive.v_down,
-        ..Options::default()
-    };
-    let mut tangents = vec![[UNTOUCHED; 4]; primitive.vertex_count()];
-    let mut bitangents = vec![[UNTOUCHED; 3]; primitive.vertex_count()];
-    let mut report = Report::default();
     // The views hold raw pointers, so the closure is not UnwindSafe; nothing is reused after a panic.
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        let mut output = Output {
-            tangents: StridedMut::from_slice(&mut tangents),
-            bitangents: Some(StridedMut::from_slice(&mut bitangents)),
-        };
-        tbasis::generate_into(&mesh, &options, &mut output, None, &mut report)
+    catch_unwind(AssertUnwindSafe(|| {
+        run_mesh(&primitive.mesh(), primitive.vertex_count(), &primitive.options(policy))
     }))
     .map_err(|panic| {
         let message = panic
@@ -76,12 +38,6 @@ fn run(primitive: &Primitive, policy: DegeneratePolicy) -> Result<Run, String> {
             .or_else(|| panic.downcast_ref::<String>().cloned())
             .unwrap_or_default();
         format!("{policy:?} panicked: {message}")
-    })?;
-    Ok(Run {
-        result,
-        report,
-        tangents,
-        bitangents,
     })
 }
 

@@ -9,51 +9,12 @@ mod common;
 
 use common::cases::{self, Attribute, Case, BAD_VALUES, BAD_VERTEX, BAND_CYLINDER, BAND_ROWS};
 use common::invariants::{check_invariants, cross, dot, unit_normal};
+use common::run::Run;
 use common::shapes::{grid_index, tangent_at_u, uv_sphere, Poles};
 use tbasis::{generate_into, DegeneratePolicy as Policy, Error, Method, Options, Output, Report, StridedMut};
 
-/// What the outputs hold before a call; no valid output component can equal it.
-const UNTOUCHED: f32 = -7.5;
-
-/// One call's outcome and outputs.
-struct Run {
-    result: Result<(), Error>,
-    report: Report,
-    tangents: Vec<[f32; 4]>,
-    bitangents: Vec<[f32; 3]>,
-}
-
-impl Run {
-    fn untouched(&self) -> bool {
-        self.tangents
-            .iter()
-            .flatten()
-            .chain(self.bitangents.iter().flatten())
-            .all(|&x| x == UNTOUCHED)
-    }
-
-    fn tangent(&self, v: usize) -> [f32; 4] {
-        self.tangents[v]
-    }
-}
-
 fn run_with(case: &Case, options: &Options) -> Run {
-    let mut tangents = vec![[UNTOUCHED; 4]; case.vertex_count()];
-    let mut bitangents = vec![[UNTOUCHED; 3]; case.vertex_count()];
-    let mut report = Report::default();
-    let result = {
-        let mut output = Output {
-            tangents: StridedMut::from_slice(&mut tangents),
-            bitangents: Some(StridedMut::from_slice(&mut bitangents)),
-        };
-        generate_into(&case.mesh(), options, &mut output, None, &mut report)
-    };
-    Run {
-        result,
-        report,
-        tangents,
-        bitangents,
-    }
+    case.run(options)
 }
 
 fn run(case: &Case, policy: Policy) -> Run {

@@ -24,16 +24,19 @@ fn bits<const N: usize>(values: &[[f32; N]]) -> Vec<u32> {
 }
 
 fn assert_same_for_every_thread_count(case: &Case, options: Options, thread_counts: &[u32]) {
-    let (tangents, bitangents, result) = case.run(&Options { threads: 1, ..options });
+    let one = case.run(&Options { threads: 1, ..options });
     for &threads in thread_counts {
-        let (t, b, r) = case.run(&Options { threads, ..options });
+        let run = case.run(&Options { threads, ..options });
         let what = format!(
             "{} {:?} {:?} threads={threads}",
             case.name, options.method, options.degenerate_policy
         );
-        assert_eq!(r, result, "{what}: result");
-        assert!(bits(&t) == bits(&tangents), "{what}: tangents differ");
-        assert!(bits(&b) == bits(&bitangents), "{what}: bitangents differ");
+        assert_eq!(run.outcome(), one.outcome(), "{what}: result");
+        assert!(bits(&run.tangents) == bits(&one.tangents), "{what}: tangents differ");
+        assert!(
+            bits(&run.bitangents) == bits(&one.bitangents),
+            "{what}: bitangents differ"
+        );
     }
 }
 
@@ -71,10 +74,10 @@ fn every_method_and_policy_is_bit_identical_across_thread_counts() {
 fn the_quantized_sphere_exercises_degenerate_triangles_on_several_workers() {
     // Without degenerate triangles split across workers, the test above would prove less.
     let case = quantized_uv_sphere();
-    let (_, _, result) = case.run(&Options {
+    let run = case.run(&Options {
         threads: 4,
         ..Options::default()
     });
-    let report = result.expect("INHERIT accepts the mesh");
+    let report = run.outcome().expect("INHERIT accepts the mesh");
     assert!(report.degenerate_triangles > 1000 && report.inherited_vertices + report.fallback_vertices > 0);
 }

@@ -12,12 +12,11 @@
 use std::io::Write;
 use std::path::Path;
 
-use tbasis::{DegeneratePolicy, Indices, Mesh, Options, Output, Report, Strided, StridedMut};
+use tbasis::{DegeneratePolicy, Indices, Mesh, Options, Report, Strided};
+
+use super::run::{run_mesh, Run};
 
 use super::shapes::{cylinder, flat_grid, grid, grid_index, jitter, push, quantize_uvs, uv_sphere, Poles, Vertex};
-
-/// What [`Case::run`] returns: tangents, bitangents and the call's result.
-pub type RunOutput = (Vec<[f32; 4]>, Vec<[f32; 3]>, Result<Report, tbasis::Error>);
 
 /// A test mesh: packed per-vertex arrays and optional u32 indices.
 #[derive(Clone, Debug, Default)]
@@ -47,35 +46,18 @@ impl Case {
         }
     }
 
-    /// Runs the library on this case; returns tangents, bitangents and the result.
-    pub fn run(&self, options: &Options) -> RunOutput {
-        let mut tangents = vec![[0.0f32; 4]; self.vertex_count()];
-        let mut bitangents = vec![[0.0f32; 3]; self.vertex_count()];
-        let mut report = Report::default();
-        let result = {
-            let mut output = Output {
-                tangents: StridedMut::from_slice(&mut tangents),
-                bitangents: Some(StridedMut::from_slice(&mut bitangents)),
-            };
-            tbasis::generate_into(&self.mesh(), options, &mut output, None, &mut report)
-        };
-        (tangents, bitangents, result.map(|()| report))
+    /// Runs the library on this case.
+    pub fn run(&self, options: &Options) -> Run {
+        run_mesh(&self.mesh(), self.vertex_count(), options)
     }
 
     /// The report a policy produces on this case (also on a REJECT refusal).
     pub fn expected_report(&self, policy: DegeneratePolicy) -> Report {
-        let options = Options {
+        self.run(&Options {
             degenerate_policy: policy,
             ..Options::default()
-        };
-        let mut tangents = vec![[0.0f32; 4]; self.vertex_count()];
-        let mut output = Output {
-            tangents: StridedMut::from_slice(&mut tangents),
-            bitangents: None,
-        };
-        let mut report = Report::default();
-        let _ = tbasis::generate_into(&self.mesh(), &options, &mut output, None, &mut report);
-        report
+        })
+        .report
     }
 }
 

@@ -5,6 +5,8 @@
 //! +1 or -1, and the bitangent, when asked for, is `w * cross(n, t)`. Arithmetic is in f64 so the
 //! checker adds no rounding of its own, and huge or subnormal normals normalize exactly.
 
+use glam::DVec3;
+
 /// Largest accepted deviation of a length from 1, of a dot product from 0, and of a bitangent
 /// from `w * cross(n, t)` (Euclidean distance).
 pub const TOLERANCE: f64 = 1e-5;
@@ -21,15 +23,11 @@ pub fn unit_normal(normal: [f32; 3]) -> Option<[f64; 3]> {
 }
 
 pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    DVec3::from(a).dot(DVec3::from(b))
 }
 
 pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    DVec3::from(a).cross(DVec3::from(b)).to_array()
 }
 
 fn xyz(v: [f32; 4]) -> [f64; 3] {

@@ -55,6 +55,25 @@ impl Primitive {
     pub fn triangle_count(&self) -> usize {
         self.indices.len() / 3
     }
+
+    /// The library's view of this primitive.
+    pub fn mesh(&self) -> tbasis::Mesh<'_> {
+        tbasis::Mesh {
+            positions: tbasis::Strided::from_slice(&self.positions),
+            normals: tbasis::Strided::from_slice(&self.normals),
+            texcoords: self.texcoords.as_deref().map(tbasis::Strided::from_slice),
+            indices: tbasis::Indices::U32(tbasis::Strided::from_slice(&self.indices)),
+        }
+    }
+
+    /// Options for `policy`, with V pointing down for glTF.
+    pub fn options(&self, policy: tbasis::DegeneratePolicy) -> tbasis::Options {
+        tbasis::Options {
+            degenerate_policy: policy,
+            flip_v: self.v_down,
+            ..tbasis::Options::default()
+        }
+    }
 }
 
 /// A loaded corpus file: its manifest row and its primitives.

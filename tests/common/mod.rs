@@ -2,3 +2,8 @@
 #![allow(dead_code)]
 
 pub mod cases;
+pub mod invariants;
+pub mod load;
+pub mod run;
+pub mod scenes;
+pub mod shapes;
