@@ -18,34 +18,26 @@
 //!
 //! Prints the tables and writes `docs/bench.md`.
 
+#[path = "../c_tests/listing.rs"]
+mod listing;
 #[allow(dead_code)]
 #[path = "../tests/common/load.rs"]
 mod load;
+#[path = "common/machine.rs"]
+mod machine;
 #[allow(dead_code)]
 #[path = "../tests/common/scenes.rs"]
 mod scenes;
 
-use std::ffi::c_long;
 use std::fmt::Write as _;
 use std::fs;
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+use listing::listing_tangents;
+use machine::{load_average, machine};
 use tbasis::{generate, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
-
-extern "C" {
-    /// `c_tests/listing.h`: the listing with packed arrays and u32 indices.
-    fn listing_tangents_u32(
-        vertex_count: c_long,
-        vertex: *const f32,
-        normal: *const f32,
-        texcoord: *const f32,
-        triangle_count: c_long,
-        triangle: *const u32,
-        tangent: *mut f32,
-    ) -> c_long;
-}
 
 /// The command, as the report shows it.
 const COMMAND: &str = "cargo run --release --example bench";
@@ -349,21 +341,13 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls
         for (part, tangents) in scene.parts.iter().zip(outputs.iter_mut()) {
             match generator {
                 Generator::Listing => {
-                    // SAFETY: packed arrays of `vertices()` vertices and `indices.len() / 3`
-                    // triangles whose indices are all below that (load.rs and scenes.rs check it),
-                    // and an output of as many tangents, as listing.h requires.
-                    let status = unsafe {
-                        listing_tangents_u32(
-                            part.vertices() as c_long,
-                            part.positions.as_ptr().cast(),
-                            part.normals.as_ptr().cast(),
-                            part.listing_texcoords.as_ptr().cast(),
-                            (part.indices.len() / 3) as c_long,
-                            part.indices.as_ptr(),
-                            tangents.as_mut_ptr().cast(),
-                        )
-                    };
-                    assert!(status >= 0, "listing.c could not allocate");
+                    listing_tangents(
+                        &part.positions,
+                        &part.normals,
+                        &part.listing_texcoords,
+                        &part.indices,
+                        tangents,
+                    );
                 }
                 Generator::Library(options) => {
                     let options = Options {
@@ -484,30 +468,6 @@ fn read_bandwidth(data: &[u64], threads: usize) -> f64 {
         best = best.min(start.elapsed().as_secs_f64());
     }
     std::mem::size_of_val(data) as f64 / best
-}
-
-/// The CPU and its core count.
-fn machine() -> String {
-    let cpu = fs::read_to_string("/proc/cpuinfo")
-        .unwrap_or_default()
-        .lines()
-        .find(|l| l.starts_with("model name"))
-        .and_then(|l| l.split(':').nth(1))
-        .map(|s| s.trim().to_string())
-        .unwrap_or_else(|| "unknown CPU".to_string());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!("{cpu}, {cores} cores")
-}
-
-/// The load averages over 1, 5 and 15 minutes.
-fn load_average() -> String {
-    let text = fs::read_to_string("/proc/loadavg").unwrap_or_default();
-    let fields: Vec<&str> = text.split_whitespace().take(3).collect();
-    if fields.len() == 3 {
-        fields.join(", ")
-    } else {
-        "unknown".to_string()
-    }
 }
 
 /// Everything one scene gave.

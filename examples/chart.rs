@@ -18,37 +18,29 @@
 //! of the first corner that references it. MikkTSpace reads the mesh as unindexed triangles, built
 //! from the indexed mesh before timing.
 
+#[path = "../c_tests/listing.rs"]
+mod listing;
 #[allow(dead_code)]
 #[path = "../tests/common/load.rs"]
 mod load;
+#[path = "common/machine.rs"]
+mod machine;
 #[allow(dead_code)]
 #[path = "../tests/common/scenes.rs"]
 mod scenes;
 
 use std::collections::HashMap;
-use std::ffi::c_long;
 use std::fmt::Write as _;
 use std::fs;
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use listing::listing_tangents;
+use machine::{load_average, machine};
 use meshopt::TangentOptions;
 use scenes::{Accuracy, Scene, SceneSpec};
 use tbasis::{generate, DegeneratePolicy, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
-
-extern "C" {
-    /// `c_tests/listing.h`: the listing with packed arrays and u32 indices.
-    fn listing_tangents_u32(
-        vertex_count: c_long,
-        vertex: *const f32,
-        normal: *const f32,
-        texcoord: *const f32,
-        triangle_count: c_long,
-        triangle: *const u32,
-        tangent: *mut f32,
-    ) -> c_long;
-}
 
 /// Who computes the tangents.
 #[derive(Clone, Copy)]
@@ -280,20 +272,13 @@ fn run(generator: Generator, input: &Input, corners: &Corners, time: bool) -> (V
         Generator::Listing => {
             let mut tangents = vec![[0.0f32; 4]; vertex_count];
             let (_, time) = timed(timing, || {
-                // SAFETY: packed arrays of vertex_count vertices and index_count / 3 triangles whose
-                // indices are all below vertex_count, as listing.h requires.
-                let status = unsafe {
-                    listing_tangents_u32(
-                        vertex_count as c_long,
-                        input.positions.as_ptr().cast(),
-                        input.normals.as_ptr().cast(),
-                        input.texcoords.as_ptr().cast(),
-                        (input.indices.len() / 3) as c_long,
-                        input.indices.as_ptr(),
-                        tangents.as_mut_ptr().cast(),
-                    )
-                };
-                assert!(status >= 0, "listing.c could not allocate");
+                listing_tangents(
+                    input.positions,
+                    input.normals,
+                    input.texcoords,
+                    input.indices,
+                    &mut tangents,
+                );
             });
             (tangents, time)
         }
@@ -848,30 +833,6 @@ fn vertex_kinds(positions: &[[f32; 3]], uvs: &[[f32; 2]], indices: &[u32]) -> Ve
         referenced,
         seam,
         collapsed,
-    }
-}
-
-/// The CPU and its core count, for the record.
-fn machine() -> String {
-    let cpu = fs::read_to_string("/proc/cpuinfo")
-        .unwrap_or_default()
-        .lines()
-        .find(|l| l.starts_with("model name"))
-        .and_then(|l| l.split(':').nth(1))
-        .map(|s| s.trim().to_string())
-        .unwrap_or_else(|| "unknown CPU".to_string());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!("{cpu}, {cores} cores")
-}
-
-/// The load averages over 1, 5 and 15 minutes: other work on the machine slows and scatters times.
-fn load_average() -> String {
-    let text = fs::read_to_string("/proc/loadavg").unwrap_or_default();
-    let fields: Vec<&str> = text.split_whitespace().take(3).collect();
-    if fields.len() == 3 {
-        fields.join(", ")
-    } else {
-        "unknown".to_string()
     }
 }
 

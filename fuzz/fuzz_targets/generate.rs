@@ -30,11 +30,15 @@
 //!   orthogonal.
 #![no_main]
 
+#[path = "../../c_tests/listing.rs"]
+mod listing;
+
 use core::ffi::{c_long, c_void, CStr};
 use core::mem::size_of;
 use core::ptr;
 
 use libfuzzer_sys::fuzz_target;
+use listing::listing_tangents;
 use tbasis::ffi::*;
 
 /// Bytes of the arena holding every buffer of a `tbasis_generate` call.
@@ -1495,18 +1499,6 @@ fn unit(n: [f32; 3]) -> Option<[f64; 3]> {
     Some(n.map(|x| x / len))
 }
 
-extern "C" {
-    /// `c_tests/listing.h`: the C port of the original listing, packed arrays, u32 indices.
-    fn listing_tangents_u32(
-        vertex_count: c_long,
-        vertex: *const f32,
-        normal: *const f32,
-        texcoord: *const f32,
-        triangle_count: c_long,
-        triangle: *const u32,
-        tangent: *mut f32,
-    ) -> c_long;
-}
 
 /// Lengyel's `CalculateTangentArray` (2001) as the C port `c_tests/listing.c` computes it (linked
 /// by `fuzz/build.rs`, built with `-ffp-contract=off`), on packed copies of the inputs.
@@ -1518,26 +1510,11 @@ fn listing(
     texcoord: impl Fn(usize) -> [f32; 2],
 ) -> Vec<[f32; 4]> {
     let mut tangents = vec![[0.0f32; 4]; vertex_count];
-    if vertex_count == 0 {
-        return tangents;
-    }
     let positions: Vec<[f32; 3]> = (0..vertex_count).map(position).collect();
     let normals: Vec<[f32; 3]> = (0..vertex_count).map(normal).collect();
     let texcoords: Vec<[f32; 2]> = (0..vertex_count).map(texcoord).collect();
     let indices: Vec<u32> = triangles.iter().flatten().map(|&i| i as u32).collect();
-    // SAFETY: every array is packed and holds the counts passed; every index is below vertex_count.
-    let status = unsafe {
-        listing_tangents_u32(
-            vertex_count as c_long,
-            positions.as_ptr().cast(),
-            normals.as_ptr().cast(),
-            texcoords.as_ptr().cast(),
-            triangles.len() as c_long,
-            indices.as_ptr(),
-            tangents.as_mut_ptr().cast(),
-        )
-    };
-    assert!(status >= 0, "the listing's port could not allocate");
+    listing_tangents(&positions, &normals, &texcoords, &indices, &mut tangents);
     tangents
 }
 

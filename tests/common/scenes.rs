@@ -18,6 +18,8 @@
 
 use std::f64::consts::{PI, TAU};
 
+use glam::DVec3;
+
 /// Largest jitter of a grid vertex, in cells along each parameter. At 0.2 the corners of a
 /// triangle move by at most 0.4 of a cell relative to each other, which keeps every triangle's
 /// orientation in parameter space (checked by `tests/accuracy.rs`).
@@ -385,30 +387,27 @@ pub fn accuracy(scene: &Scene, tangents: &[[f32; 4]]) -> Accuracy {
     result
 }
 
+// Small f64 vector helpers over arrays, the scenes' storage, backed by glam.
 fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    (DVec3::from(a) + DVec3::from(b)).to_array()
 }
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    (DVec3::from(a) - DVec3::from(b)).to_array()
 }
 
 fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
-    a.map(|x| x * k)
+    (DVec3::from(a) * k).to_array()
 }
 
 pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    DVec3::from(a).dot(DVec3::from(b))
 }
 
 pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    DVec3::from(a).cross(DVec3::from(b)).to_array()
 }
 
 fn normalize(a: [f64; 3]) -> [f64; 3] {
-    scale(a, 1.0 / dot(a, a).sqrt())
+    DVec3::from(a).normalize().to_array()
 }
