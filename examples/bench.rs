@@ -341,13 +341,16 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls
         for (part, tangents) in scene.parts.iter().zip(outputs.iter_mut()) {
             match generator {
                 Generator::Listing => {
-                    listing_tangents(
-                        &part.positions,
-                        &part.normals,
-                        &part.listing_texcoords,
-                        &part.indices,
-                        tangents,
-                    );
+                    // SAFETY: load.rs and scenes.rs keep every index below the vertex count.
+                    unsafe {
+                        listing_tangents(
+                            &part.positions,
+                            &part.normals,
+                            &part.listing_texcoords,
+                            &part.indices,
+                            tangents,
+                        )
+                    };
                 }
                 Generator::Library(options) => {
                     let options = Options {

@@ -24,12 +24,36 @@ const SANITIZE_FLAGS: [&str; 4] = [
 
 /// `target/<profile>/`, where cargo puts `libtbasis.so` and `libtbasis.a`; this test binary runs
 /// from `target/<profile>/deps/`.
+///
+/// `cargo test` builds the library only as an rlib for the Rust tests, so the first call builds
+/// its C artifacts (`libtbasis.so`, `libtbasis.a`) into the same directory with `cargo build`.
 fn library_dir() -> PathBuf {
-    let exe = std::env::current_exe().expect("path of the test executable");
-    exe.parent()
-        .and_then(Path::parent)
-        .expect("the test executable lives in target/<profile>/deps/")
-        .to_path_buf()
+    static BUILT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    BUILT
+        .get_or_init(|| {
+            let exe = std::env::current_exe().expect("path of the test executable");
+            let dir = exe
+                .parent()
+                .and_then(Path::parent)
+                .expect("the test executable lives in target/<profile>/deps/")
+                .to_path_buf();
+            let target_dir = dir.parent().expect("target/<profile>");
+            let mut build = Command::new(env!("CARGO"));
+            build.args([
+                "build",
+                "--lib",
+                "--manifest-path",
+                concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"),
+            ]);
+            build.arg("--target-dir").arg(target_dir);
+            if dir.file_name().is_some_and(|name| name == "release") {
+                build.arg("--release");
+            }
+            let status = build.status().expect("run cargo build");
+            assert!(status.success(), "cargo build --lib failed: {status}");
+            dir
+        })
+        .clone()
 }
 
 /// An empty directory under the target dir for one test's build products.

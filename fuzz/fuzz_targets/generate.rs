@@ -1514,7 +1514,8 @@ fn listing(
     let normals: Vec<[f32; 3]> = (0..vertex_count).map(normal).collect();
     let texcoords: Vec<[f32; 2]> = (0..vertex_count).map(texcoord).collect();
     let indices: Vec<u32> = triangles.iter().flatten().map(|&i| i as u32).collect();
-    listing_tangents(&positions, &normals, &texcoords, &indices, &mut tangents);
+    // SAFETY: only called after the library accepted the call, so every index is in range.
+    unsafe { listing_tangents(&positions, &normals, &texcoords, &indices, &mut tangents) };
     tangents
 }
 
