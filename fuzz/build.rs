@@ -4,5 +4,8 @@ fn main() {
     println!("cargo:rerun-if-changed=../c_tests/listing.c");
     println!("cargo:rerun-if-changed=../c_tests/listing.h");
     // The port matches the listing bit for bit only when no multiply-add is fused.
-    cc::Build::new().file("../c_tests/listing.c").flag("-ffp-contract=off").compile("tbasis_listing");
+    cc::Build::new()
+        .file("../c_tests/listing.c")
+        .flag("-ffp-contract=off")
+        .compile("tbasis_listing");
 }

@@ -561,12 +561,7 @@ fn run_separate(
     Outcome {
         result,
         report,
-        buffers: before
-            .into_iter()
-            .zip(after)
-            .zip(masks)
-            .map(|((b, a), m)| (b, a, m))
-            .collect(),
+        buffers: zip3(before, after, masks),
         tangents,
         bitangents,
         overlapping: false,
@@ -654,12 +649,7 @@ fn run_interleaved(
     Outcome {
         result,
         report,
-        buffers: before
-            .into_iter()
-            .zip(after)
-            .zip(masks)
-            .map(|((b, a), m)| (b, a, m))
-            .collect(),
+        buffers: zip3(before, after, masks),
         tangents,
         bitangents,
         overlapping: overlap.is_some() && n > 0,
@@ -1044,4 +1034,13 @@ fn empty_mesh_takes_empty_scratch_at_any_alignment() {
         );
         assert_eq!(result, Ok(()), "empty scratch at byte {offset} of a 4-aligned buffer");
     }
+}
+
+/// Each buffer as (bytes before, bytes after, which bytes the call may write).
+fn zip3<A, B, C>(
+    a: impl IntoIterator<Item = A>,
+    b: impl IntoIterator<Item = B>,
+    c: impl IntoIterator<Item = C>,
+) -> Vec<(A, B, C)> {
+    a.into_iter().zip(b).zip(c).map(|((a, b), c)| (a, b, c)).collect()
 }

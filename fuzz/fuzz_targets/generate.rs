@@ -1196,16 +1196,7 @@ fn check_generate(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8]) {
 
     let report = check_report_bytes(plan, status, &report_bytes);
     if let (true, Some(r)) = (debugging(), report) {
-        eprintln!(
-            "report: degenerate {} (first {}), fallback {}, mirrored {}, unreferenced {}, inherited {}, abnormal {}",
-            r.degenerate_triangles,
-            r.first_degenerate_triangle,
-            r.fallback_vertices,
-            r.mirrored_vertices,
-            r.unreferenced_vertices,
-            r.inherited_vertices,
-            r.abnormal_normals
-        );
+        eprintln!("report: {}", describe_report(&r));
     }
     if ok {
         let triangles = triangles_of(plan, &before);
@@ -1296,17 +1287,7 @@ fn check_report(plan: &Plan, status: tbasis_status, report: &tbasis_report, tria
     }
     let expected_unreferenced = used.iter().filter(|u| !**u).count();
     let r = report;
-    let context = format!(
-        "report (degenerate {}, first {}, fallback {}, mirrored {}, unreferenced {}, inherited {}, abnormal {}), \
-         status {status}, policy {policy}",
-        r.degenerate_triangles,
-        r.first_degenerate_triangle,
-        r.fallback_vertices,
-        r.mirrored_vertices,
-        r.unreferenced_vertices,
-        r.inherited_vertices,
-        r.abnormal_normals
-    );
+    let context = format!("report ({}), status {status}, policy {policy}", describe_report(&r));
     assert!(
         r.degenerate_triangles <= triangles.len(),
         "{context}: more degenerate triangles than triangles"
@@ -1498,7 +1479,6 @@ fn unit(n: [f32; 3]) -> Option<[f64; 3]> {
     let len = length(n);
     Some(n.map(|x| x / len))
 }
-
 
 /// Lengyel's `CalculateTangentArray` (2001) as the C port `c_tests/listing.c` computes it (linked
 /// by `fuzz/build.rs`, built with `-ffp-contract=off`), on packed copies of the inputs.
@@ -1699,4 +1679,18 @@ fn check_listing_entry(input: &mut Input) {
             );
         }
     }
+}
+
+/// Every field of a report, for failure messages and `FUZZ_DEBUG`.
+fn describe_report(r: &tbasis_report) -> String {
+    format!(
+        "degenerate {}, first {}, fallback {}, mirrored {}, unreferenced {}, inherited {}, abnormal {}",
+        r.degenerate_triangles,
+        r.first_degenerate_triangle,
+        r.fallback_vertices,
+        r.mirrored_vertices,
+        r.unreferenced_vertices,
+        r.inherited_vertices,
+        r.abnormal_normals
+    )
 }
