@@ -14,6 +14,7 @@ fn main() {
 
     let version = |part: &str| env::var(format!("CARGO_PKG_VERSION_{part}")).unwrap();
     let (major, minor, patch) = (version("MAJOR"), version("MINOR"), version("PATCH"));
+    set_soname(&major, &minor);
     let mut config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml")).expect("cbindgen.toml");
     config.after_includes = Some(format!(
         "\n#define TBASIS_VERSION_MAJOR {major}\n#define TBASIS_VERSION_MINOR {minor}\n#define TBASIS_VERSION_PATCH {patch}\n\
@@ -58,4 +59,19 @@ fn compile_listing(crate_dir: &std::path::Path) {
         println!("cargo:rerun-if-changed=benches");
         println!("cargo:rustc-link-arg-benches={}", archive.display());
     }
+}
+
+/// Gives the Linux shared library the ABI name that executables record and later load:
+/// `libtbasis.so.MAJOR`, or `libtbasis.so.0.MINOR` while MAJOR is 0, since Cargo treats a 0.x
+/// minor release as breaking. `scripts/install.sh` creates the symlink of that name.
+fn set_soname(major: &str, minor: &str) {
+    if env::var("CARGO_CFG_TARGET_OS").as_deref() != Ok("linux") {
+        return;
+    }
+    let soname = if major == "0" {
+        format!("libtbasis.so.0.{minor}")
+    } else {
+        format!("libtbasis.so.{major}")
+    };
+    println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,{soname}");
 }

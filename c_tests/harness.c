@@ -149,12 +149,15 @@ static void check_only_outputs_written(const char *what, const interleaved *v, c
  * Shared call helpers
  */
 
+/* The highest status value the header defines. */
+#define LAST_STATUS TBASIS_ERROR_INVALID_FRAME
+
 /* Which statuses some check has seen returned on purpose. */
-static int provoked[TBASIS_ERROR_INTERNAL + 1];
+static int provoked[LAST_STATUS + 1];
 
 static int expect_status(const char *what, tbasis_status got, tbasis_status want)
 {
-    if (got == want && want <= TBASIS_ERROR_INTERNAL)
+    if (got == want && want <= LAST_STATUS)
         provoked[want] = 1;
     return check(got == want, "%s: status %u (%s), expected %u (%s)", what, (unsigned)got, tbasis_status_string(got),
                  (unsigned)want, tbasis_status_string(want));
@@ -252,8 +255,8 @@ static void check_frames(const char *what, size_t count, const float *normals, c
 
 static void test_version_and_strings(void)
 {
-    const char *strings[TBASIS_ERROR_INTERNAL + 1];
-    const tbasis_status unknown[] = {TBASIS_ERROR_INTERNAL + 1, 1000, UINT32_MAX};
+    const char *strings[LAST_STATUS + 1];
+    const tbasis_status unknown[] = {LAST_STATUS + 1, 1000, UINT32_MAX};
     tbasis_status s;
     size_t k;
 
@@ -263,7 +266,7 @@ static void test_version_and_strings(void)
               TBASIS_VERSION_MINOR < 1000 && TBASIS_VERSION_PATCH < 1000,
           "TBASIS_VERSION disagrees with the MAJOR/MINOR/PATCH macros");
 
-    for (s = 0; s <= TBASIS_ERROR_INTERNAL; s++) {
+    for (s = 0; s <= LAST_STATUS; s++) {
         strings[s] = tbasis_status_string(s);
         if (!check(strings[s] != NULL && strings[s][0] != '\0', "tbasis_status_string(%u) is NULL or empty",
                    (unsigned)s))
@@ -278,7 +281,7 @@ static void test_version_and_strings(void)
         if (!check(text != NULL && text[0] != '\0', "tbasis_status_string(%lu) is NULL or empty",
                    (unsigned long)unknown[k]))
             continue;
-        for (s = 0; s <= TBASIS_ERROR_INTERNAL; s++)
+        for (s = 0; s <= LAST_STATUS; s++)
             if (strings[s] != NULL)
                 check(strcmp(strings[s], text) != 0, "unknown status %lu reads like status %u: \"%s\"",
                       (unsigned long)unknown[k], (unsigned)s, text);
@@ -1108,6 +1111,80 @@ static void test_stability(const char *path, uint64_t max_vertices)
 }
 
 /* ---------------------------------------------------------------------------------------------
+ * Tangent-space transforms
+ */
+
+static double det3(const double c0[3], const double c1[3], const double c2[3])
+{
+    return c0[0] * (c1[1] * c2[2] - c1[2] * c2[1]) - c1[0] * (c0[1] * c2[2] - c0[2] * c2[1]) +
+           c2[0] * (c0[1] * c1[2] - c0[2] * c1[1]);
+}
+
+/* A frame that is not orthonormal (normal of length 2, tangent at 45 degrees to it, w = -1): the
+   two exports must match M^-1 d and M d, M = [T B N] with B = w * cross(N, T), computed here in
+   double (Cramer's rule), and refuse bad input without writing. */
+static void test_transforms(void)
+{
+    const float normal[3] = {0.0f, 0.0f, 2.0f}, tangent[4] = {1.0f, 0.0f, 1.0f, -1.0f};
+    const float direction[3] = {0.3f, -0.7f, 1.1f}, parallel[4] = {0.0f, 0.0f, 3.0f, 1.0f};
+    const float nan_direction[3] = {0.3f, NAN, 1.1f};
+    double t[3], b[3], n[3], d[3], column[3], det, want_to[3], want_from[3];
+    float to[3], back[3], from[3], inplace[3];
+    int k, j;
+
+    for (k = 0; k < 3; k++) {
+        t[k] = tangent[k];
+        n[k] = normal[k];
+        d[k] = direction[k];
+    }
+    b[0] = tangent[3] * (n[1] * t[2] - n[2] * t[1]);
+    b[1] = tangent[3] * (n[2] * t[0] - n[0] * t[2]);
+    b[2] = tangent[3] * (n[0] * t[1] - n[1] * t[0]);
+    det = det3(t, b, n);
+    for (k = 0; k < 3; k++) {
+        /* Cramer: coordinate k is det(M with column k replaced by d) / det(M). */
+        const double *columns[3];
+        columns[0] = t;
+        columns[1] = b;
+        columns[2] = n;
+        for (j = 0; j < 3; j++)
+            column[j] = d[j];
+        columns[k] = column;
+        want_to[k] = det3(columns[0], columns[1], columns[2]) / det;
+        want_from[k] = d[0] * t[k] + d[1] * b[k] + d[2] * n[k];
+    }
+
+    expect_status("to_tangent_space", tbasis_to_tangent_space(normal, tangent, direction, to), TBASIS_OK);
+    expect_status("from_tangent_space", tbasis_from_tangent_space(normal, tangent, direction, from), TBASIS_OK);
+    expect_status("from_tangent_space(to_tangent_space)", tbasis_from_tangent_space(normal, tangent, to, back),
+                  TBASIS_OK);
+    for (k = 0; k < 3; k++) {
+        check(fabs(to[k] - want_to[k]) <= 1e-6 * fabs(want_to[k]) + 1e-7, "to_tangent_space[%d] = %.9g, want %.9g",
+              k, to[k], want_to[k]);
+        check(fabs(from[k] - want_from[k]) <= 1e-6 * fabs(want_from[k]) + 1e-7,
+              "from_tangent_space[%d] = %.9g, want %.9g", k, from[k], want_from[k]);
+        check(fabs(back[k] - direction[k]) <= 1e-6, "round trip [%d] = %.9g, want %.9g", k, back[k], direction[k]);
+    }
+
+    memcpy(inplace, direction, sizeof inplace);
+    expect_status("to_tangent_space in place", tbasis_to_tangent_space(normal, tangent, inplace, inplace), TBASIS_OK);
+    check(memcmp(inplace, to, sizeof to) == 0, "to_tangent_space in place differs from the separate result");
+
+    sentinel_fill(to, sizeof to);
+    expect_status("to_tangent_space, tangent parallel to the normal",
+                  tbasis_to_tangent_space(normal, parallel, direction, to), TBASIS_ERROR_INVALID_FRAME);
+    expect_status("from_tangent_space, NaN direction", tbasis_from_tangent_space(normal, tangent, nan_direction, to),
+                  TBASIS_ERROR_INVALID_FRAME);
+    expect_status("to_tangent_space, NULL tangent", tbasis_to_tangent_space(normal, NULL, direction, to),
+                  TBASIS_ERROR_NULL_POINTER);
+    expect_status("from_tangent_space, NULL result", tbasis_from_tangent_space(normal, tangent, direction, NULL),
+                  TBASIS_ERROR_NULL_POINTER);
+    check(sentinel_intact(to, sizeof to), "a refused transform wrote its result");
+    check(strcmp(tbasis_status_string(TBASIS_ERROR_INVALID_FRAME), tbasis_status_string(1000)) != 0,
+          "TBASIS_ERROR_INVALID_FRAME has no description of its own");
+}
+
+/* ---------------------------------------------------------------------------------------------
  * Main
  */
 
@@ -1143,8 +1220,11 @@ int main(int argc, char **argv)
         f->source = &small;
         test_statuses(f);
     }
-    for (s = TBASIS_ERROR_NULL_POINTER; s < TBASIS_ERROR_INTERNAL; s++)
-        check(provoked[s], "no check provoked status %u (%s)", (unsigned)s, tbasis_status_string(s));
+    test_transforms();
+    /* Every error but INTERNAL, which only a bug in the library returns. */
+    for (s = TBASIS_ERROR_NULL_POINTER; s <= LAST_STATUS; s++)
+        if (s != TBASIS_ERROR_INTERNAL)
+            check(provoked[s], "no check provoked status %u (%s)", (unsigned)s, tbasis_status_string(s));
 
     if (argc > 1)
         test_stability(argv[1], argc > 2 ? strtoull(argv[2], NULL, 10) : UINT64_MAX);

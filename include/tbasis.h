@@ -199,6 +199,11 @@ typedef struct tbasis_report {
 // A bug in the library was caught at the boundary.
 #define TBASIS_ERROR_INTERNAL 16
 
+// `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
+// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result
+// component overflows float.
+#define TBASIS_ERROR_INVALID_FRAME 17
+
 
 
 
@@ -277,6 +282,61 @@ const char *tbasis_status_string(tbasis_status status);
 // The library's version, `TBASIS_VERSION_MAJOR * 1000000 + TBASIS_VERSION_MINOR * 1000 +
 // TBASIS_VERSION_PATCH`, equal to the header's `TBASIS_VERSION` when header and library match.
 uint32_t tbasis_version(void);
+
+// Moves an object-space `direction` into the tangent space of one vertex:
+// `result = inverse(M) * direction`, where `M = [T B N]` has the columns `T = tangent.xyz`,
+// `B = tangent.w * cross(normal, T)` (the bitangent `tbasis_generate` implies) and
+// `N = normal`. `result[0]` is the coordinate along `T`, `result[1]` along `B`, `result[2]` along
+// the normal, as normal maps store them. For CPU-side baking and tools.
+//
+// `inverse(M)` is the exact inverse, not the transpose, so the frame need not be orthonormal (a
+// normal that is not unit length or not orthogonal to `T` is fine): `tbasis_from_tangent_space`
+// maps `result` back to `direction` up to rounding. For an orthonormal frame it is the transpose
+// product `(dot(T, d), dot(B, d), dot(N, d))`. Computed in double precision, rounded to float once.
+//
+// - `normal`: 3 floats, the vertex normal, any nonzero length.
+// - `tangent`: 4 floats, `x, y, z, w`; `w` is the handedness (`+1` or `-1` as
+//   `tbasis_generate` writes it; another nonzero value scales `B`).
+// - `direction`: 3 floats, the object-space vector (e.g. towards the light).
+// - `result`: 3 floats, written only on `TBASIS_OK`. It may be the same array as `direction`
+//   (or overlap any input): every input is read before it is written.
+//
+// Pointers need no alignment.
+//
+// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER` (any pointer is NULL),
+// `TBASIS_ERROR_INVALID_FRAME` (an input is NaN or infinite; `normal` or `T` is zero, `w` is
+// zero, or `normal` and `T` are parallel: `|cross(normal, T)| <= 1e-6 * |normal| * |T|`; or a
+// result component overflows float) or `TBASIS_ERROR_INTERNAL`. On any error `result` has not
+// been written.
+//
+// # Safety
+// Each pointer must be NULL or valid for the floats listed above.
+tbasis_status tbasis_to_tangent_space(const float *normal,
+                                      const float *tangent,
+                                      const float *direction,
+                                      float *result);
+
+// Moves a tangent-space `direction` (x along the tangent, y along the bitangent, z along the
+// normal, e.g. a decoded normal-map sample) into object space: `result = M * direction =
+// x * T + y * B + z * N`, with `M`, `T` and `B` as in `tbasis_to_tangent_space`. Nothing is
+// normalized. Computed in double precision, rounded to float once.
+//
+// - `normal`, `tangent`, `result`: as in `tbasis_to_tangent_space`.
+// - `direction`: 3 floats, the tangent-space vector.
+//
+// The frame is checked as by `tbasis_to_tangent_space` (a singular frame is refused although
+// `M * direction` would exist), so the two functions accept the same frames and invert each other.
+//
+// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `TBASIS_ERROR_INVALID_FRAME` or
+// `TBASIS_ERROR_INTERNAL`, as for `tbasis_to_tangent_space`. On any error `result` has not been
+// written.
+//
+// # Safety
+// Each pointer must be NULL or valid for the floats listed above.
+tbasis_status tbasis_from_tangent_space(const float *normal,
+                                        const float *tangent,
+                                        const float *direction,
+                                        float *result);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -16,6 +16,7 @@ use crate::options::Options;
 use crate::report::Report;
 use crate::status::Error;
 use crate::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
+use crate::transform::{from_tangent_space, to_tangent_space};
 use crate::validate::check_overlaps;
 
 /// Result of a call: `TBASIS_OK` (0) or one of the `TBASIS_ERROR_*` values, which never change.
@@ -58,6 +59,10 @@ pub const TBASIS_ERROR_INVALID_THRESHOLD: tbasis_status = 14;
 pub const TBASIS_ERROR_INVALID_COUNT: tbasis_status = 15;
 /// A bug in the library was caught at the boundary.
 pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
+/// `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
+/// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result
+/// component overflows float.
+pub const TBASIS_ERROR_INVALID_FRAME: tbasis_status = 17;
 
 /// `index_type`: 16-bit indices.
 pub const TBASIS_INDEX_U16: u32 = 1;
@@ -456,6 +461,98 @@ const VERSION: u32 = {
         + parse(env!("CARGO_PKG_VERSION_PATCH"))
 };
 
+/// `to_tangent_space` or `from_tangent_space`: normal, tangent, direction in; result out.
+type Transform = fn([f32; 3], [f32; 4], [f32; 3]) -> Result<[f32; 3], Error>;
+
+/// Reads the three arrays of a transform call, checking for NULL first (`result` too), calls
+/// `transform` and writes `result` only when it succeeds.
+unsafe fn transform_vertex(
+    normal: *const f32,
+    tangent: *const f32,
+    direction: *const f32,
+    result: *mut f32,
+    transform: Transform,
+) -> tbasis_status {
+    boundary(|| {
+        if normal.is_null() || tangent.is_null() || direction.is_null() || result.is_null() {
+            return Err(Error::NullPointer);
+        }
+        // Every input is copied before `result` is written, so `result` may alias any of them.
+        let value = transform(
+            ptr::read_unaligned(normal.cast::<[f32; 3]>()),
+            ptr::read_unaligned(tangent.cast::<[f32; 4]>()),
+            ptr::read_unaligned(direction.cast::<[f32; 3]>()),
+        )?;
+        ptr::write_unaligned(result.cast::<[f32; 3]>(), value);
+        Ok(())
+    })
+}
+
+/// Moves an object-space `direction` into the tangent space of one vertex:
+/// `result = inverse(M) * direction`, where `M = [T B N]` has the columns `T = tangent.xyz`,
+/// `B = tangent.w * cross(normal, T)` (the bitangent `tbasis_generate` implies) and
+/// `N = normal`. `result[0]` is the coordinate along `T`, `result[1]` along `B`, `result[2]` along
+/// the normal, as normal maps store them. For CPU-side baking and tools.
+///
+/// `inverse(M)` is the exact inverse, not the transpose, so the frame need not be orthonormal (a
+/// normal that is not unit length or not orthogonal to `T` is fine): `tbasis_from_tangent_space`
+/// maps `result` back to `direction` up to rounding. For an orthonormal frame it is the transpose
+/// product `(dot(T, d), dot(B, d), dot(N, d))`. Computed in double precision, rounded to float once.
+///
+/// - `normal`: 3 floats, the vertex normal, any nonzero length.
+/// - `tangent`: 4 floats, `x, y, z, w`; `w` is the handedness (`+1` or `-1` as
+///   `tbasis_generate` writes it; another nonzero value scales `B`).
+/// - `direction`: 3 floats, the object-space vector (e.g. towards the light).
+/// - `result`: 3 floats, written only on `TBASIS_OK`. It may be the same array as `direction`
+///   (or overlap any input): every input is read before it is written.
+///
+/// Pointers need no alignment.
+///
+/// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER` (any pointer is NULL),
+/// `TBASIS_ERROR_INVALID_FRAME` (an input is NaN or infinite; `normal` or `T` is zero, `w` is
+/// zero, or `normal` and `T` are parallel: `|cross(normal, T)| <= 1e-6 * |normal| * |T|`; or a
+/// result component overflows float) or `TBASIS_ERROR_INTERNAL`. On any error `result` has not
+/// been written.
+///
+/// # Safety
+/// Each pointer must be NULL or valid for the floats listed above.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_to_tangent_space(
+    normal: *const f32,
+    tangent: *const f32,
+    direction: *const f32,
+    result: *mut f32,
+) -> tbasis_status {
+    transform_vertex(normal, tangent, direction, result, to_tangent_space)
+}
+
+/// Moves a tangent-space `direction` (x along the tangent, y along the bitangent, z along the
+/// normal, e.g. a decoded normal-map sample) into object space: `result = M * direction =
+/// x * T + y * B + z * N`, with `M`, `T` and `B` as in `tbasis_to_tangent_space`. Nothing is
+/// normalized. Computed in double precision, rounded to float once.
+///
+/// - `normal`, `tangent`, `result`: as in `tbasis_to_tangent_space`.
+/// - `direction`: 3 floats, the tangent-space vector.
+///
+/// The frame is checked as by `tbasis_to_tangent_space` (a singular frame is refused although
+/// `M * direction` would exist), so the two functions accept the same frames and invert each other.
+///
+/// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `TBASIS_ERROR_INVALID_FRAME` or
+/// `TBASIS_ERROR_INTERNAL`, as for `tbasis_to_tangent_space`. On any error `result` has not been
+/// written.
+///
+/// # Safety
+/// Each pointer must be NULL or valid for the floats listed above.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_from_tangent_space(
+    normal: *const f32,
+    tangent: *const f32,
+    direction: *const f32,
+    result: *mut f32,
+) -> tbasis_status {
+    transform_vertex(normal, tangent, direction, result, from_tangent_space)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -479,6 +576,7 @@ mod tests {
             TBASIS_ERROR_INVALID_THRESHOLD,
             TBASIS_ERROR_INVALID_COUNT,
             TBASIS_ERROR_INTERNAL,
+            TBASIS_ERROR_INVALID_FRAME,
         ];
         let rust_values: Vec<u32> = Error::ALL.iter().map(|e| e.code()).collect();
         assert_eq!(c_values.to_vec(), rust_values);

@@ -33,6 +33,7 @@ mod scratch;
 mod status;
 #[allow(unsafe_code)]
 mod strided;
+mod transform;
 mod validate;
 
 pub use generate::{generate, generate_into, scratch_size};
@@ -41,3 +42,4 @@ pub use options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOL
 pub use report::Report;
 pub use status::Error;
 pub use strided::{span_bytes, Element, Strided, StridedMut};
+pub use transform::{from_tangent_space, to_tangent_space};

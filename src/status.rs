@@ -39,11 +39,14 @@ pub enum Error {
     InvalidCount = 15,
     /// A bug in the library was caught at the boundary; nothing was written.
     Internal = 16,
+    /// A tangent-space transform got a frame that is singular (normal or tangent zero or parallel,
+    /// handedness zero) or not finite, a non-finite direction, or a result that overflows a float.
+    InvalidFrame = 17,
 }
 
 impl Error {
     /// Every error, in the order of its value.
-    pub const ALL: [Error; 16] = [
+    pub const ALL: [Error; 17] = [
         Error::NullPointer,
         Error::InvalidStride,
         Error::InvalidIndexCount,
@@ -60,6 +63,7 @@ impl Error {
         Error::InvalidThreshold,
         Error::InvalidCount,
         Error::Internal,
+        Error::InvalidFrame,
     ];
 
     /// The C status value.
@@ -91,6 +95,7 @@ impl Error {
             Error::InvalidThreshold => "degenerate_threshold is negative or not finite\0",
             Error::InvalidCount => "a count is negative\0",
             Error::Internal => "internal error\0",
+            Error::InvalidFrame => "the tangent frame is singular, or an input or the result is not finite\0",
         }
     }
 

@@ -13,6 +13,9 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use common::artifacts::library_dir;
+use common::tools::missing;
+
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off"];
 const SANITIZE_FLAGS: [&str; 4] = [
@@ -21,40 +24,6 @@ const SANITIZE_FLAGS: [&str; 4] = [
     "-g",
     "-fno-omit-frame-pointer",
 ];
-
-/// `target/<profile>/`, where cargo puts `libtbasis.so` and `libtbasis.a`; this test binary runs
-/// from `target/<profile>/deps/`.
-///
-/// `cargo test` builds the library only as an rlib for the Rust tests, so the first call builds
-/// its C artifacts (`libtbasis.so`, `libtbasis.a`) into the same directory with `cargo build`.
-fn library_dir() -> PathBuf {
-    static BUILT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
-    BUILT
-        .get_or_init(|| {
-            let exe = std::env::current_exe().expect("path of the test executable");
-            let dir = exe
-                .parent()
-                .and_then(Path::parent)
-                .expect("the test executable lives in target/<profile>/deps/")
-                .to_path_buf();
-            let target_dir = dir.parent().expect("target/<profile>");
-            let mut build = Command::new(env!("CARGO"));
-            build.args([
-                "build",
-                "--lib",
-                "--manifest-path",
-                concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"),
-            ]);
-            build.arg("--target-dir").arg(target_dir);
-            if dir.file_name().is_some_and(|name| name == "release") {
-                build.arg("--release");
-            }
-            let status = build.status().expect("run cargo build");
-            assert!(status.success(), "cargo build --lib failed: {status}");
-            dir
-        })
-        .clone()
-}
 
 /// An empty directory under the target dir for one test's build products.
 fn work_dir(test: &str) -> PathBuf {
@@ -82,14 +51,6 @@ fn compiler(cpp: bool, out_dir: &Path) -> Command {
         .out_dir(out_dir)
         .get_compiler()
         .to_command()
-}
-
-/// A missing tool: fail under CI, else say why the test is skipped.
-fn missing(what: &str) {
-    if std::env::var_os("CI").is_some() {
-        panic!("{what} is missing; CI must install it");
-    }
-    eprintln!("skipping: {what} is missing (this test fails instead when CI is set)");
 }
 
 /// Runs `command`, printing its output; panics with `what` if it cannot start.
@@ -189,7 +150,10 @@ fn sanitizers_available(dir: &Path) -> bool {
 fn c_harness_passes_under_asan_and_ubsan() {
     let dir = work_dir("sanitized");
     if !sanitizers_available(&dir) {
-        return missing("gcc's AddressSanitizer/UBSan runtime (Debian: libasan8, libubsan1)");
+        return missing(
+            "gcc's AddressSanitizer/UBSan runtime (Debian: libasan8, libubsan1)",
+            "the sanitized harness",
+        );
     }
     let exe = build_harness(&dir, true);
     let mut command = Command::new(exe);
@@ -213,7 +177,7 @@ fn c_harness_passes_under_asan_and_ubsan() {
 #[test]
 fn c_harness_passes_under_valgrind() {
     if Command::new("valgrind").arg("--version").output().is_err() {
-        return missing("valgrind");
+        return missing("valgrind", "the harness under valgrind");
     }
     let dir = work_dir("valgrind");
     let exe = build_harness(&dir, false);
@@ -296,7 +260,7 @@ fn header_functions() -> BTreeSet<String> {
 fn shared_library_exports_exactly_the_header_functions() {
     let lib = library_dir().join("libtbasis.so");
     let Ok(output) = Command::new("nm").args(["-D", "--defined-only"]).arg(&lib).output() else {
-        return missing("nm (Debian: binutils)");
+        return missing("nm (Debian: binutils)", "the export check");
     };
     assert!(output.status.success(), "nm -D {}: {}", lib.display(), output.status);
     let exported: BTreeSet<String> = String::from_utf8_lossy(&output.stdout)

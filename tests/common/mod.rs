@@ -1,9 +1,11 @@
 //! Test support shared by the integration tests (each test file uses what it needs).
 #![allow(dead_code)]
 
+pub mod artifacts;
 pub mod cases;
 pub mod invariants;
 pub mod load;
 pub mod run;
 pub mod scenes;
 pub mod shapes;
+pub mod tools;

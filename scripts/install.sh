@@ -1,0 +1,152 @@
+#!/usr/bin/env bash
+# Builds tbasis and installs it like a C library (Linux):
+#
+#   scripts/install.sh PREFIX [--profile release|debug]
+#
+# PREFIX/lib/libtbasis.so.X.Y.Z     the shared library (soname libtbasis.so.MAJOR, or
+#                                   libtbasis.so.0.MINOR while MAJOR is 0, set by build.rs)
+# PREFIX/lib/<soname>, libtbasis.so symlinks to it
+# PREFIX/lib/libtbasis.a            the static archive
+# PREFIX/include/tbasis.h           the committed header
+# PREFIX/lib/pkgconfig/tbasis.pc    pkg-config: `pkg-config --cflags --libs [--static] tbasis`
+# PREFIX/lib/cmake/tbasis/          CMake: find_package(tbasis) gives tbasis::tbasis (shared) and
+#                                   tbasis::tbasis_static
+#
+# The profile defaults to release. Cargo runs as `cargo build --lib` ($CARGO if set, else cargo)
+# in the usual target directory (CARGO_TARGET_DIR is honoured). DESTDIR, when set, is prepended
+# to every installed path for staged installs; the files still describe PREFIX.
+set -euo pipefail
+
+usage() {
+  echo "usage: $0 PREFIX [--profile release|debug]" >&2
+  exit 2
+}
+
+prefix=""
+profile=release
+while [ "$#" -gt 0 ]; do
+  case "$1" in
+    --profile)
+      [ "$#" -ge 2 ] || usage
+      profile=$2
+      shift 2
+      ;;
+    --profile=*)
+      profile=${1#--profile=}
+      shift
+      ;;
+    -h | --help) usage ;;
+    -*) usage ;;
+    *)
+      [ -z "$prefix" ] || usage
+      prefix=$1
+      shift
+      ;;
+  esac
+done
+[ -n "$prefix" ] || usage
+case "$profile" in
+  release) cargo_profile=(--release) ;;
+  debug) cargo_profile=() ;;
+  *) usage ;;
+esac
+if [ "$(uname -s)" != Linux ]; then
+  echo "$0: only Linux layouts (.so with a soname) are supported" >&2
+  exit 1
+fi
+# The .pc file records the prefix, so it must not depend on the current directory.
+case "$prefix" in
+  /*) ;;
+  *) prefix="$PWD/$prefix" ;;
+esac
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+cargo=${CARGO:-cargo}
+manifest="$root/Cargo.toml"
+
+# What a Rust static library needs from the system on Linux; printed by
+# `cargo rustc --lib --crate-type staticlib -- --print native-static-libs`.
+native_static_libs="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
+
+# Version from Cargo.toml: `cargo pkgid` ends in `#VERSION` or `#NAME@VERSION`.
+pkgid=$("$cargo" pkgid --quiet --manifest-path "$manifest")
+version=${pkgid##*#}
+version=${version##*@}
+core=${version%%[-+]*}
+IFS=. read -r major minor patch <<<"$core"
+if ! [[ "$major" =~ ^[0-9]+$ && "$minor" =~ ^[0-9]+$ && "$patch" =~ ^[0-9]+$ ]]; then
+  echo "$0: cannot read the version from cargo pkgid: $pkgid" >&2
+  exit 1
+fi
+if [ "$major" = 0 ]; then
+  soname="libtbasis.so.0.$minor"
+else
+  soname="libtbasis.so.$major"
+fi
+real_name="libtbasis.so.$core"
+description=$(awk -F'"' '/^\[/ { in_package = ($0 == "[package]") }
+  in_package && /^description *=/ { print $2; exit }' "$manifest")
+
+"$cargo" build --lib --manifest-path "$manifest" "${cargo_profile[@]}"
+target_dir=$("$cargo" metadata --no-deps --format-version 1 --manifest-path "$manifest" |
+  sed -n 's/.*"target_directory":"\([^"]*\)".*/\1/p')
+built="$target_dir/$profile"
+for file in libtbasis.so libtbasis.a; do
+  if [ ! -f "$built/$file" ]; then
+    echo "$0: cargo did not produce $built/$file" >&2
+    exit 1
+  fi
+done
+# The symlinks below must carry the name executables will look for.
+if command -v readelf >/dev/null 2>&1; then
+  embedded=$(readelf -d "$built/libtbasis.so" | sed -n 's/.*(SONAME).*\[\(.*\)\].*/\1/p')
+  if [ "$embedded" != "$soname" ]; then
+    echo "$0: $built/libtbasis.so has soname '$embedded', expected '$soname'" >&2
+    exit 1
+  fi
+fi
+
+dest="${DESTDIR:-}$prefix"
+install -d "$dest/lib/pkgconfig" "$dest/lib/cmake/tbasis" "$dest/include"
+install -m 755 "$built/libtbasis.so" "$dest/lib/$real_name"
+ln -sfn "$real_name" "$dest/lib/$soname"
+ln -sfn "$soname" "$dest/lib/libtbasis.so"
+install -m 644 "$built/libtbasis.a" "$dest/lib/libtbasis.a"
+install -m 644 "$root/include/tbasis.h" "$dest/include/tbasis.h"
+
+# Byte 4 of an ELF header: 1 for a 32-bit object, 2 for a 64-bit one.
+sizeof_void_p=$(($(od -An -tu1 -j4 -N1 "$built/libtbasis.so") * 4))
+native_static_libs_cmake=$(echo "$native_static_libs" | sed 's/^-l//; s/ -l/;/g')
+
+# Replaces every @KEY@ of template $1 with its value (KEY=VALUE arguments) into file $2.
+render() {
+  local text key value
+  text=$(<"$1")
+  shift
+  local out=$1
+  shift
+  for pair in "$@"; do
+    key=${pair%%=*}
+    value=${pair#*=}
+    text=${text//"@$key@"/"$value"}
+  done
+  if [[ "$text" =~ @[A-Z_]+@ ]]; then
+    echo "$0: $out: no value for ${BASH_REMATCH[0]}" >&2
+    exit 1
+  fi
+  printf '%s\n' "$text" >"$out"
+  chmod 644 "$out"
+}
+
+render "$root/packaging/tbasis.pc.in" "$dest/lib/pkgconfig/tbasis.pc" \
+  "PREFIX=$prefix" "VERSION=$version" "DESCRIPTION=$description" \
+  "NATIVE_STATIC_LIBS=$native_static_libs"
+render "$root/packaging/tbasisConfig.cmake.in" "$dest/lib/cmake/tbasis/tbasisConfig.cmake" \
+  "VERSION=$core" "REAL_NAME=$real_name" "SONAME=$soname" \
+  "NATIVE_STATIC_LIBS_CMAKE=$native_static_libs_cmake"
+render "$root/packaging/tbasisConfigVersion.cmake.in" \
+  "$dest/lib/cmake/tbasis/tbasisConfigVersion.cmake" \
+  "VERSION=$core" "VERSION_MAJOR=$major" "VERSION_MINOR=$minor" \
+  "SIZEOF_VOID_P=$sizeof_void_p"
+
+echo "installed tbasis $version ($profile, soname $soname) into $dest"

@@ -1,0 +1,394 @@
+//! Installs the library with `scripts/install.sh` into a fresh prefix and consumes it the ways a C
+//! or C++ project would: the installed layout and soname, CMake's `find_package` (shared, static,
+//! version check, moved prefix), pkg-config (shared and static) and the C++ example.
+//!
+//! A missing tool skips the parts that need it with a message naming its Debian package, except
+//! when `CI` is set: CI installs them, so there a missing tool fails the test.
+#![cfg(target_os = "linux")]
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use common::artifacts::soname;
+use common::tools::missing;
+
+const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
+const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
+const MINOR: &str = env!("CARGO_PKG_VERSION_MINOR");
+const PATCH: &str = env!("CARGO_PKG_VERSION_PATCH");
+const WARNINGS: [&str; 4] = ["-Wall", "-Wextra", "-Werror", "-pedantic"];
+
+fn real_name() -> String {
+    format!("libtbasis.so.{MAJOR}.{MINOR}.{PATCH}")
+}
+
+/// The line `examples/c/consumer.c` prints on success.
+fn consumer_line() -> String {
+    format!("consumer: tbasis {MAJOR}.{MINOR}.{PATCH}, 4 tangents ok")
+}
+
+/// A directory unique to this run, removed when the test passes and kept for inspection when it
+/// fails.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new() -> Scratch {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .expect("clock after 1970")
+            .as_nanos();
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("install-{}-{nanos}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("create the scratch directory");
+        Scratch(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("left {} for inspection", self.0.display());
+        } else if let Err(e) = std::fs::remove_dir_all(&self.0) {
+            eprintln!("could not remove {}: {e}", self.0.display());
+        }
+    }
+}
+
+/// Whether `tool` runs; if not, fails under CI, else says what is skipped.
+fn have(tool: &str, package: &str, part: &str) -> bool {
+    if Command::new(tool).arg("--version").output().is_ok() {
+        return true;
+    }
+    missing(&format!("{tool} (Debian: {package})"), part);
+    false
+}
+
+/// Runs `command` and returns its output; panics unless it exits with 0.
+fn run_ok(mut command: Command, what: &str) -> Output {
+    let output = command
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot run {command:?}: {e}"));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success(),
+        "{what} failed ({}): {command:?}\n--- stdout\n{stdout}\n--- stderr\n{stderr}",
+        output.status
+    );
+    output
+}
+
+fn stdout_of(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+/// Runs a built consumer with no LD_LIBRARY_PATH (cargo sets one for tests) unless `library_path`
+/// names one, and requires `expected` as its whole output.
+fn run_consumer(exe: &Path, library_path: Option<&Path>, expected: &str) {
+    let mut command = Command::new(exe);
+    command.env_remove("LD_LIBRARY_PATH");
+    if let Some(dir) = library_path {
+        command.env("LD_LIBRARY_PATH", dir);
+    }
+    let output = run_ok(command, &format!("running {}", exe.display()));
+    assert_eq!(stdout_of(&output).trim_end(), expected, "output of {}", exe.display());
+}
+
+/// `readelf -d` of `file`: its dynamic section.
+fn dynamic_section(file: &Path) -> String {
+    let mut command = Command::new("readelf");
+    command.arg("-d").arg(file);
+    stdout_of(&run_ok(command, "readelf -d"))
+}
+
+/// The names in `[...]` of the dynamic entries of kind `tag` (NEEDED, SONAME, RUNPATH, RPATH).
+fn dynamic_entries(file: &Path, tag: &str) -> Vec<String> {
+    let marker = format!("({tag})");
+    dynamic_section(file)
+        .lines()
+        .filter(|line| line.contains(&marker))
+        .filter_map(|line| Some(line.split_once('[')?.1.split_once(']')?.0.to_string()))
+        .collect()
+}
+
+/// Requires that `exe` loads the shared library by its soname, or, `statically`, not at all.
+fn check_needed(exe: &Path, statically: bool) {
+    let needed = dynamic_entries(exe, "NEEDED");
+    if statically {
+        assert!(
+            !needed.iter().any(|name| name.starts_with("libtbasis")),
+            "{} should contain the static archive but loads {needed:?}",
+            exe.display()
+        );
+    } else {
+        assert!(
+            needed.contains(&soname()),
+            "{} should load {} but loads {needed:?}",
+            exe.display(),
+            soname()
+        );
+    }
+}
+
+/// `target/<profile>/`, where this test runs from (`target/<profile>/deps/`), and the profile the
+/// install script takes: the same as this test's, so the nested cargo build reuses what `cargo
+/// test` and the C harness already built instead of building the library a second time.
+fn build_profile() -> (PathBuf, &'static str) {
+    let exe = std::env::current_exe().expect("path of the test executable");
+    let profile_dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("the test executable lives in target/<profile>/deps/");
+    let target_dir = profile_dir.parent().expect("target/<profile>").to_path_buf();
+    let release = profile_dir.file_name().is_some_and(|name| name == "release");
+    (target_dir, if release { "release" } else { "debug" })
+}
+
+fn install(prefix: &Path) {
+    let (target_dir, profile) = build_profile();
+    let mut command = Command::new("bash");
+    command.arg(Path::new(CRATE_DIR).join("scripts/install.sh"));
+    command.arg(prefix).args(["--profile", profile]);
+    command.env("CARGO", env!("CARGO")).env("CARGO_TARGET_DIR", &target_dir);
+    let output = run_ok(command, "scripts/install.sh");
+    let expected = format!(
+        "installed tbasis {} ({profile}, soname {})",
+        env!("CARGO_PKG_VERSION"),
+        soname()
+    );
+    assert!(
+        stdout_of(&output).contains(&expected),
+        "scripts/install.sh did not report `{expected}`:\n{}",
+        stdout_of(&output)
+    );
+}
+
+/// (a) The files, the symlink chain and the soname.
+fn check_layout(prefix: &Path) {
+    let lib = prefix.join("lib");
+    let real = lib.join(real_name());
+    let meta = std::fs::symlink_metadata(&real).unwrap_or_else(|e| panic!("{}: {e}", real.display()));
+    assert!(meta.file_type().is_file(), "{} must be a regular file", real.display());
+    // Relative links, so that the prefix can move.
+    for (link, target) in [(soname(), real_name()), ("libtbasis.so".to_string(), soname())] {
+        let path = lib.join(&link);
+        let found = std::fs::read_link(&path).unwrap_or_else(|e| panic!("{} is not a symlink: {e}", path.display()));
+        assert_eq!(found, Path::new(&target), "{} points elsewhere", path.display());
+    }
+    let archive = std::fs::read(lib.join("libtbasis.a")).expect("lib/libtbasis.a");
+    assert!(
+        archive.starts_with(b"!<arch>\n"),
+        "lib/libtbasis.a is not an ar archive"
+    );
+    let header = std::fs::read(prefix.join("include/tbasis.h")).expect("include/tbasis.h");
+    let committed = std::fs::read(Path::new(CRATE_DIR).join("include/tbasis.h")).expect("the committed header");
+    assert!(
+        header == committed,
+        "the installed header differs from include/tbasis.h"
+    );
+
+    let pc = std::fs::read_to_string(lib.join("pkgconfig/tbasis.pc")).expect("lib/pkgconfig/tbasis.pc");
+    for line in [
+        format!("prefix={}", prefix.display()),
+        format!("Version: {}", env!("CARGO_PKG_VERSION")),
+        "Libs: -L${libdir} -ltbasis".to_string(),
+        "Cflags: -I${includedir}".to_string(),
+    ] {
+        assert!(pc.lines().any(|l| l == line), "tbasis.pc lacks `{line}`:\n{pc}");
+    }
+    for file in ["tbasisConfig.cmake", "tbasisConfigVersion.cmake"] {
+        let text = std::fs::read_to_string(lib.join("cmake/tbasis").join(file)).expect(file);
+        assert!(!text.contains(&*prefix.to_string_lossy()), "{file} names the prefix");
+        assert!(!text.contains('@'), "{file} has a template key left:\n{text}");
+    }
+    assert!(!pc.contains('@'), "tbasis.pc has a template key left:\n{pc}");
+
+    if have("readelf", "binutils", "the soname check") {
+        assert_eq!(
+            dynamic_entries(&real, "SONAME"),
+            [soname()],
+            "soname of {}",
+            real.display()
+        );
+    }
+}
+
+/// Configures and builds `examples/c` against `prefix`, with `-DTBASIS_VERSION_REQUIRED=<version>`
+/// when given. A failed configure returns its output; a failed build panics.
+fn cmake_build(prefix: &Path, build: &Path, version: Option<&str>) -> Result<(), String> {
+    let mut configure = Command::new("cmake");
+    configure.arg("-S").arg(Path::new(CRATE_DIR).join("examples/c"));
+    configure.arg("-B").arg(build);
+    configure.arg(format!("-DCMAKE_PREFIX_PATH={}", prefix.display()));
+    configure.arg(format!("-DCMAKE_C_FLAGS={}", WARNINGS.join(" ")));
+    if let Some(version) = version {
+        configure.arg(format!("-DTBASIS_VERSION_REQUIRED={version}"));
+    }
+    let output = configure.output().expect("run cmake");
+    if !output.status.success() {
+        return Err(format!(
+            "{}{}",
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr)
+        ));
+    }
+    let cache = std::fs::read_to_string(build.join("CMakeCache.txt")).expect("CMakeCache.txt");
+    let config_dir = format!("tbasis_DIR:PATH={}", prefix.join("lib/cmake/tbasis").display());
+    assert!(
+        cache.lines().any(|line| line == config_dir),
+        "CMake did not use {config_dir}"
+    );
+    let mut compile = Command::new("cmake");
+    compile.arg("--build").arg(build);
+    run_ok(compile, "cmake --build examples/c");
+    Ok(())
+}
+
+/// (b) `find_package(tbasis)` from examples/c: both targets, and the version check.
+fn check_cmake(prefix: &Path, work: &Path) {
+    if !(have("cmake", "cmake", "the CMake consumer")
+        && have("make", "make", "the CMake consumer")
+        && have("cc", "gcc", "the CMake consumer"))
+    {
+        return;
+    }
+    let build = work.join("cmake");
+    cmake_build(prefix, &build, Some(&format!("{MAJOR}.{MINOR}"))).unwrap_or_else(|log| panic!("cmake:\n{log}"));
+    // No LD_LIBRARY_PATH: the shared library is found through the RUNPATH CMake gives executables
+    // linked to imported targets in the build tree.
+    run_consumer(&build.join("consumer"), None, &consumer_line());
+    check_needed(&build.join("consumer"), false);
+    run_consumer(&build.join("consumer_static"), None, &consumer_line());
+    check_needed(&build.join("consumer_static"), true);
+
+    // A version of another ABI series, and a newer one of this series, must be refused.
+    let next_series = if MAJOR == "0" {
+        format!("0.{}", MINOR.parse::<u64>().expect("minor") + 1)
+    } else {
+        format!("{}", MAJOR.parse::<u64>().expect("major") + 1)
+    };
+    let newer_patch = format!("{MAJOR}.{MINOR}.{}", PATCH.parse::<u64>().expect("patch") + 1);
+    for version in [next_series, newer_patch] {
+        match cmake_build(prefix, &work.join(format!("cmake-{version}")), Some(&version)) {
+            Ok(()) => panic!(
+                "find_package(tbasis {version}) accepted version {}",
+                env!("CARGO_PKG_VERSION")
+            ),
+            // CMake wraps its message; compare with single spaces.
+            Err(log) => assert!(
+                log.split_whitespace()
+                    .collect::<Vec<_>>()
+                    .join(" ")
+                    .contains(&format!("compatible with requested version \"{version}\"")),
+                "find_package(tbasis {version}) failed for another reason:\n{log}"
+            ),
+        }
+    }
+}
+
+/// (f) The CMake package still works after the prefix moves: its paths are relative to itself.
+fn check_cmake_moved(prefix: &Path, work: &Path) {
+    if !(have("cmake", "cmake", "the moved prefix") && have("make", "make", "the moved prefix")) {
+        return;
+    }
+    let moved = work.join("moved");
+    std::fs::rename(prefix, &moved).expect("move the prefix");
+    let build = work.join("cmake-moved");
+    let result = cmake_build(&moved, &build, None);
+    std::fs::rename(&moved, prefix).expect("move the prefix back");
+    result.unwrap_or_else(|log| panic!("cmake with the moved prefix:\n{log}"));
+    let runpath = [
+        dynamic_entries(&build.join("consumer"), "RUNPATH"),
+        dynamic_entries(&build.join("consumer"), "RPATH"),
+    ]
+    .concat();
+    let moved_lib = moved.join("lib").display().to_string();
+    assert!(
+        runpath.iter().any(|p| p.split(':').any(|dir| dir == moved_lib)),
+        "the consumer built against the moved prefix has runpath {runpath:?}"
+    );
+}
+
+/// `pkg-config ARGS tbasis` against the installed .pc file.
+fn pkg_config(prefix: &Path, args: &[&str]) -> Vec<String> {
+    let mut command = Command::new("pkg-config");
+    command.env("PKG_CONFIG_PATH", prefix.join("lib/pkgconfig"));
+    command.args(args).arg("tbasis");
+    let output = run_ok(command, &format!("pkg-config {args:?} tbasis"));
+    stdout_of(&output).split_whitespace().map(str::to_string).collect()
+}
+
+fn compile_consumer(flags: &[String], exe: &Path) {
+    let mut command = Command::new("cc");
+    command.arg("-std=c99").args(WARNINGS);
+    command.arg(Path::new(CRATE_DIR).join("examples/c/consumer.c"));
+    command.args(flags).arg("-o").arg(exe);
+    run_ok(command, "compiling examples/c/consumer.c");
+}
+
+/// (c) and (d): `cc consumer.c $(pkg-config --cflags --libs [--static] tbasis)`.
+fn check_pkg_config(prefix: &Path, work: &Path) {
+    if !(have("pkg-config", "pkg-config", "the pkg-config consumers") && have("cc", "gcc", "the pkg-config consumers"))
+    {
+        return;
+    }
+    assert_eq!(pkg_config(prefix, &["--modversion"]), [env!("CARGO_PKG_VERSION")]);
+
+    let exe = work.join("consumer-pkg-config");
+    compile_consumer(&pkg_config(prefix, &["--cflags", "--libs"]), &exe);
+    // Nothing records the prefix in the executable, so the loader finds the library through
+    // LD_LIBRARY_PATH, as it would for any library in a non-system prefix.
+    run_consumer(&exe, Some(&prefix.join("lib")), &consumer_line());
+    check_needed(&exe, false);
+
+    // The same flags from a copy of the prefix without the shared library: `-ltbasis` can then
+    // only mean libtbasis.a, and the link needs Libs.private.
+    let static_prefix = work.join("static-prefix");
+    for file in ["include/tbasis.h", "lib/libtbasis.a", "lib/pkgconfig/tbasis.pc"] {
+        let to = static_prefix.join(file);
+        std::fs::create_dir_all(to.parent().expect("a directory")).expect("create the static prefix");
+        std::fs::copy(prefix.join(file), &to).unwrap_or_else(|e| panic!("copy {file}: {e}"));
+    }
+    let define = format!("--define-variable=prefix={}", static_prefix.display());
+    let flags = pkg_config(&static_prefix, &[&define, "--static", "--cflags", "--libs"]);
+    assert!(flags.iter().any(|f| f == "-lpthread"), "no Libs.private in {flags:?}");
+    let exe = work.join("consumer-pkg-config-static");
+    compile_consumer(&flags, &exe);
+    run_consumer(&exe, None, &consumer_line());
+    check_needed(&exe, true);
+}
+
+/// (e) The C++ example against the installed header and shared library.
+fn check_cpp(prefix: &Path, work: &Path) {
+    if !have("c++", "g++", "the C++ example") {
+        return;
+    }
+    let lib = prefix.join("lib");
+    for standard in ["-std=c++11", "-std=c++17"] {
+        let exe = work.join(format!("interleaved{standard}"));
+        let mut command = Command::new("c++");
+        command.arg(standard).args(WARNINGS);
+        command.arg("-I").arg(prefix.join("include"));
+        command.arg(Path::new(CRATE_DIR).join("examples/cpp/interleaved.cpp"));
+        command.arg("-L").arg(&lib).arg("-ltbasis");
+        command.arg(format!("-Wl,-rpath,{}", lib.display())).arg("-o").arg(&exe);
+        run_ok(
+            command,
+            &format!("compiling examples/cpp/interleaved.cpp with {standard}"),
+        );
+        run_consumer(&exe, None, "interleaved: 24 vertices, 24 tangents written in place, ok");
+    }
+}
+
+#[test]
+fn installed_library_is_consumable_from_c_cmake_pkg_config_and_cpp() {
+    let scratch = Scratch::new();
+    let prefix = scratch.0.join("prefix");
+    install(&prefix);
+    check_layout(&prefix);
+    check_cmake(&prefix, &scratch.0);
+    check_pkg_config(&prefix, &scratch.0);
+    check_cpp(&prefix, &scratch.0);
+    check_cmake_moved(&prefix, &scratch.0);
+}
