@@ -16,12 +16,20 @@ pub fn reject_normal(tangent: Vec3, unit_normal: Vec3) -> Vec3 {
 /// largest component first.
 #[inline(always)]
 pub fn length_and_direction(v: Vec3) -> Option<(f32, Vec3)> {
-    let squared = v.length_squared();
-    if squared > 1e-30 && squared < 1e30 {
-        let length = squared.sqrt();
-        return Some((length, v * (1.0 / length)));
+    let (length, direction, exact) = length_and_direction_fast(v);
+    if exact {
+        return Some((length, direction));
     }
     length_and_direction_scaled(v)
+}
+
+/// The common case of [`length_and_direction`], without a branch so that it runs in SIMD lanes;
+/// `exact` is false when the squared length is near the float limits (or not finite).
+#[inline(always)]
+pub fn length_and_direction_fast(v: Vec3) -> (f32, Vec3, bool) {
+    let squared = v.length_squared();
+    let length = squared.sqrt();
+    (length, v * (1.0 / length), squared > 1e-30 && squared < 1e30)
 }
 
 #[cold]
@@ -52,6 +60,10 @@ pub fn orthonormalize(tangent: Vec3, normal: Option<Vec3>) -> Option<(f32, Vec3)
     let Some(n) = normal else {
         return length_and_direction(tangent);
     };
+    let (length, direction, exact) = orthonormalize_fast(tangent, n);
+    if exact {
+        return Some((length, direction));
+    }
     let squared = tangent.length_squared();
     if !(squared > 1e-30 && squared < 1e30) {
         // Far from unit scale (a subnormal sum from tiny triangles, or a huge one), the products
@@ -65,6 +77,19 @@ pub fn orthonormalize(tangent: Vec3, normal: Option<Vec3>) -> Option<(f32, Vec3)
         return Some((length, direction));
     }
     normalize_careful(reject_normal(direction, n)).map(|direction| (length, direction))
+}
+
+/// The common case of [`orthonormalize`] (unit normal `n`), without a branch so that it runs in
+/// SIMD lanes: `(length, direction, exact)` of `t - n (n . t)`. `exact` is false when the numbers
+/// are far from unit scale, or the tangent so nearly follows the normal that one pass of
+/// Gram-Schmidt leaves a visible error; then [`orthonormalize`] decides.
+#[inline(always)]
+pub fn orthonormalize_fast(tangent: Vec3, n: Vec3) -> (f32, Vec3, bool) {
+    let squared = tangent.length_squared();
+    let along = n.dot(tangent);
+    let (length, direction, in_range) = length_and_direction_fast(tangent - n * along);
+    let exact = (squared > 1e-30 && squared < 1e30) & in_range & (along.abs() <= 8.0 * length);
+    (length, direction, exact)
 }
 
 /// A unit tangent orthogonal to the unit normal `n`, from `n` alone.

@@ -17,6 +17,7 @@
 #![warn(missing_docs)]
 
 mod accumulate;
+mod batch;
 mod degenerate;
 #[allow(unsafe_code)]
 pub mod ffi;

@@ -3,7 +3,11 @@
 
 use glam::Vec3;
 
-use crate::frame::{fallback_tangent, length_and_direction, orthonormalize, NO_NORMAL_TANGENT};
+use crate::batch::{lane3, Lanes, LANES};
+use crate::frame::{
+    fallback_tangent, length_and_direction, length_and_direction_fast, orthonormalize, orthonormalize_fast,
+    NO_NORMAL_TANGENT,
+};
 use crate::inherit;
 use crate::mesh::{Mesh, OutputPart};
 use crate::options::DegeneratePolicy;
@@ -85,7 +89,8 @@ pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
 ///
 /// Measured vertices are written at once. Under INHERIT the others wait for their neighbours;
 /// under SKIP (and REJECT, which reaches here only without degenerate triangles) they get the
-/// fallback frame at once.
+/// fallback frame at once. The common case runs a batch of vertices at a time in SIMD lanes
+/// ([`Lanes`]); a vertex it cannot settle exactly takes the careful path ([`resolve`]).
 pub fn write_measured(
     mesh: &Mesh,
     policy: DegeneratePolicy,
@@ -95,33 +100,104 @@ pub fn write_measured(
 ) -> usize {
     let defer_missing = policy == DegeneratePolicy::Inherit && mesh.texcoords.is_some();
     let mut deferred = 0usize;
-    for (slot, sums) in scratch.sums.iter_mut().enumerate() {
-        let v = scratch.first + slot;
-        let normal = VertexNormal::new(mesh.normals.get(v));
-        report.abnormal_normals += usize::from(!normal.was_unit);
-        match resolve(sums, normal.unit) {
-            Resolved::Measured(t, w) => {
-                write_vertex(output, v, t, w, normal.unit);
-                if defer_missing {
-                    sums.primary = t.to_array();
-                    sums.weight = w;
-                    scratch.flags[slot] |= flag::RESOLVED;
+    let mut lanes = ResolvedLanes::new();
+    for (batch, sums) in scratch.sums.chunks_mut(LANES).enumerate() {
+        let first = scratch.first + batch * LANES;
+        lanes.resolve(mesh, first, sums);
+        for (i, sums) in sums.iter_mut().enumerate() {
+            let (v, slot) = (first + i, batch * LANES + i);
+            let (normal, resolved) = if lanes.exact[i] {
+                let normal = VertexNormal {
+                    unit: Some(lane3(&lanes.normal, i)),
+                    was_unit: lanes.was_unit[i],
+                };
+                let resolved = if lanes.measured[i] {
+                    Resolved::Measured(lane3(&lanes.tangent, i), lanes.w[i])
+                } else {
+                    Resolved::Missing
+                };
+                (normal, resolved)
+            } else {
+                let normal = VertexNormal::new(mesh.normals.get(v));
+                (normal, resolve(sums, normal.unit))
+            };
+            report.abnormal_normals += usize::from(!normal.was_unit);
+            match resolved {
+                Resolved::Measured(t, w) => {
+                    write_vertex(output, v, t, w, normal.unit);
+                    if defer_missing {
+                        sums.primary = t.to_array();
+                        sums.weight = w;
+                        scratch.flags[slot] |= flag::RESOLVED;
+                    }
                 }
-            }
-            Resolved::Missing if defer_missing => {
-                sums.secondary = [0.0; 3];
-                sums.weight = 0.0;
-                scratch.flags[slot] |= flag::DEFERRED;
-                deferred += 1;
-            }
-            Resolved::Missing => {
-                let (t, w) = fallback(normal.unit);
-                write_vertex(output, v, t, w, normal.unit);
-                report.fallback_vertices += 1;
+                Resolved::Missing if defer_missing => {
+                    sums.secondary = [0.0; 3];
+                    sums.weight = 0.0;
+                    scratch.flags[slot] |= flag::DEFERRED;
+                    deferred += 1;
+                }
+                Resolved::Missing => {
+                    let (t, w) = fallback(normal.unit);
+                    write_vertex(output, v, t, w, normal.unit);
+                    report.fallback_vertices += 1;
+                }
             }
         }
     }
     deferred
+}
+
+/// [`VertexNormal::new`] and [`resolve`] for a batch of vertices, one per lane, where both take
+/// their common path.
+struct ResolvedLanes {
+    /// The lane took the common path; otherwise the careful one decides.
+    exact: [bool; LANES],
+    normal: [Lanes; 3],
+    was_unit: [bool; LANES],
+    measured: [bool; LANES],
+    tangent: [Lanes; 3],
+    w: Lanes,
+}
+
+impl ResolvedLanes {
+    fn new() -> Self {
+        ResolvedLanes {
+            exact: [false; LANES],
+            normal: [[0.0; LANES]; 3],
+            was_unit: [false; LANES],
+            measured: [false; LANES],
+            tangent: [[0.0; LANES]; 3],
+            w: [0.0; LANES],
+        }
+    }
+
+    /// Vertices `first..first + sums.len()`.
+    fn resolve(&mut self, mesh: &Mesh, first: usize, sums: &[VertexSums]) {
+        let mut raw = [[0.0f32; LANES]; 3];
+        for (i, _) in sums.iter().enumerate() {
+            let n = mesh.normals.get(first + i);
+            for axis in 0..3 {
+                raw[axis][i] = n[axis];
+            }
+        }
+        for (i, sums) in sums.iter().enumerate() {
+            let (length, unit, normal_exact) = length_and_direction_fast(lane3(&raw, i));
+            let right = Vec3::from_array(sums.primary);
+            let left = Vec3::from_array(sums.secondary);
+            let pick_right = right.length_squared() >= left.length_squared();
+            let sum = if pick_right { right } else { left };
+            let (in_plane, tangent, tangent_exact) = orthonormalize_fast(sum, unit);
+            self.exact[i] = normal_exact & tangent_exact;
+            self.was_unit[i] = (length - 1.0).abs() <= 1e-3;
+            self.measured[i] = in_plane > USABLE_SHARE * sums.weight;
+            self.w[i] = if pick_right { 1.0 } else { -1.0 };
+            for axis in 0..3 {
+                self.normal[axis][i] = unit[axis];
+                self.tangent[axis][i] = tangent[axis];
+            }
+        }
+    }
 }
 
 /// Policy INHERIT, after [`write_measured`] deferred some vertices: spreads tangents into them

@@ -1,0 +1,123 @@
+//! Triangles in batches: the attributes of their corners copied into one short array per
+//! component, so that the per-triangle arithmetic runs as loops over lanes that compile to SIMD,
+//! while the sums are still added one triangle at a time, in triangle order.
+#![forbid(unsafe_code)]
+
+use glam::Vec3;
+
+use crate::mesh::Mesh;
+use crate::status::Error;
+use crate::strided::Strided;
+
+/// Triangles per batch: the gathered copies (about 8 KiB) stay in the L1 cache.
+pub const LANES: usize = 64;
+
+/// One value per triangle of a batch.
+pub type Lanes = [f32; LANES];
+
+/// The lanes loops over a batch of `len` items run: `len` rounded up to a whole SIMD register's
+/// worth (the lanes past `len` hold finished or zeroed values, computed and ignored), so that a
+/// small mesh does not pay for a whole batch.
+#[inline(always)]
+pub fn lanes_in_use(len: usize) -> usize {
+    len.next_multiple_of(8).min(LANES)
+}
+
+/// Lane `i` of three component arrays, as a vector.
+#[inline(always)]
+pub fn lane3(lanes: &[Lanes; 3], i: usize) -> Vec3 {
+    Vec3::new(lanes[0][i], lanes[1][i], lanes[2][i])
+}
+
+/// A batch of triangles and the attributes of their corners, `[corner][component][lane]`.
+pub struct TriangleBatch {
+    /// Triangles in the batch (the lanes in use).
+    pub len: usize,
+    /// Index of each triangle in the mesh.
+    pub triangle: [usize; LANES],
+    /// The vertices of each triangle's corners.
+    pub vertex: [[usize; LANES]; 3],
+    /// Corner positions.
+    pub position: [[Lanes; 3]; 3],
+    /// Corner texture coordinates.
+    pub texcoord: [[Lanes; 2]; 3],
+    /// Corner normals, when the batch was filled with them.
+    pub normal: [[Lanes; 3]; 3],
+}
+
+impl TriangleBatch {
+    /// An empty batch (on the stack: a call with caller scratch allocates nothing).
+    pub fn new() -> Self {
+        TriangleBatch {
+            len: 0,
+            triangle: [0; LANES],
+            vertex: [[0; LANES]; 3],
+            position: [[[0.0; LANES]; 3]; 3],
+            texcoord: [[[0.0; LANES]; 2]; 3],
+            normal: [[[0.0; LANES]; 3]; 3],
+        }
+    }
+}
+
+/// Walks a mesh's triangles in order, a batch at a time, keeping those with a corner in
+/// `owned` (one worker's vertex range) and checking every index on the way.
+pub struct BatchReader<'m> {
+    mesh: &'m Mesh<'m>,
+    texcoords: Strided<'m, [f32; 2]>,
+    owned: core::ops::Range<usize>,
+    with_normals: bool,
+    next: usize,
+    count: usize,
+}
+
+impl<'m> BatchReader<'m> {
+    /// A reader over every triangle of `mesh`.
+    pub fn new(
+        mesh: &'m Mesh<'m>,
+        texcoords: Strided<'m, [f32; 2]>,
+        owned: core::ops::Range<usize>,
+        with_normals: bool,
+    ) -> Result<Self, Error> {
+        Ok(BatchReader {
+            mesh,
+            texcoords,
+            owned,
+            with_normals,
+            next: 0,
+            count: mesh.indices.triangle_count(mesh.vertex_count())?,
+        })
+    }
+
+    /// Fills `batch` with the next triangles; false once every triangle has been read.
+    pub fn fill(&mut self, batch: &mut TriangleBatch) -> Result<bool, Error> {
+        batch.len = 0;
+        while batch.len < LANES && self.next < self.count {
+            let t = self.next;
+            self.next += 1;
+            let corners = self.mesh.checked_triangle(t)?;
+            if !corners.iter().any(|v| self.owned.contains(v)) {
+                continue;
+            }
+            let lane = batch.len;
+            batch.triangle[lane] = t;
+            for (k, &v) in corners.iter().enumerate() {
+                batch.vertex[k][lane] = v;
+                let p = self.mesh.positions.get(v);
+                let uv = self.texcoords.get(v);
+                for (component, value) in batch.position[k].iter_mut().zip(p) {
+                    component[lane] = value;
+                }
+                batch.texcoord[k][0][lane] = uv[0];
+                batch.texcoord[k][1][lane] = uv[1];
+                if self.with_normals {
+                    let n = self.mesh.normals.get(v);
+                    for (component, value) in batch.normal[k].iter_mut().zip(n) {
+                        component[lane] = value;
+                    }
+                }
+            }
+            batch.len += 1;
+        }
+        Ok(batch.len > 0)
+    }
+}
