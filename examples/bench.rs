@@ -37,7 +37,7 @@ use std::time::{Duration, Instant};
 
 use listing::listing_tangents;
 use machine::{load_average, machine};
-use tbasis::{generate, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
+use tbasis::{generate_into, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
 
 /// The command, as the report shows it.
 const COMMAND: &str = "cargo run --release --example bench";
@@ -259,6 +259,9 @@ fn cube() -> Scene {
 enum Generator {
     Listing,
     Library(Options),
+    /// With caller scratch, allocated and touched once before the timing: what a caller that
+    /// keeps its scratch between calls pays.
+    LibraryWithScratch(Options),
 }
 
 struct Config {
@@ -314,6 +317,18 @@ fn configs() -> Vec<Config> {
         generator: Generator::Library(Options { threads: 1, ..defaults }),
     });
     configs.push(Config {
+        name: "LENGYEL+LEGACY, caller scratch".to_string(),
+        generator: Generator::LibraryWithScratch(Options {
+            method: Method::Lengyel,
+            degenerate_policy: DegeneratePolicy::Legacy,
+            ..defaults
+        }),
+    });
+    configs.push(Config {
+        name: format!("{default_name}, caller scratch"),
+        generator: Generator::LibraryWithScratch(defaults),
+    });
+    configs.push(Config {
         name: "LENGYEL+LEGACY, threads=2".to_string(),
         generator: library(Method::Lengyel, DegeneratePolicy::Legacy, 2),
     });
@@ -336,6 +351,11 @@ fn find(configs: &[Config], name: &str) -> usize {
 /// how many calls the library refused (policy REJECT on a degenerate triangle).
 fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls: usize) -> (Duration, usize) {
     let mut refused = 0;
+    let mut scratch = Vec::new();
+    if let Generator::LibraryWithScratch(_) = generator {
+        let largest = scene.parts.iter().map(Part::vertices).max().unwrap_or(0);
+        scratch = vec![1u8; tbasis::scratch_size(largest).expect("scratch size")];
+    }
     let start = Instant::now();
     for _ in 0..calls {
         for (part, tangents) in scene.parts.iter().zip(outputs.iter_mut()) {
@@ -352,7 +372,7 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls
                         )
                     };
                 }
-                Generator::Library(options) => {
+                Generator::Library(options) | Generator::LibraryWithScratch(options) => {
                     let options = Options {
                         flip_v: part.flip_v,
                         ..options
@@ -367,8 +387,11 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls
                         tangents: StridedMut::from_slice(tangents),
                         bitangents: None,
                     };
-                    match black_box(generate(&mesh, &options, &mut output)) {
-                        Ok(_) => {}
+                    let with_scratch = matches!(generator, Generator::LibraryWithScratch(_));
+                    let mut report = tbasis::Report::default();
+                    let scratch = with_scratch.then_some(scratch.as_mut_slice());
+                    match black_box(generate_into(&mesh, &options, &mut output, scratch, &mut report)) {
+                        Ok(()) => {}
                         Err(Error::DegenerateUv) => refused += 1,
                         Err(e) => panic!("the library refused a benchmark mesh: {e:?}"),
                     }
@@ -496,7 +519,7 @@ fn table(result: &SceneResult, configs: &[Config], bandwidth: &Bandwidth) -> Str
     );
     for (config, m) in configs.iter().zip(&result.measured) {
         let threads = match config.generator {
-            Generator::Library(o) => o.threads.max(1) as usize,
+            Generator::Library(o) | Generator::LibraryWithScratch(o) => o.threads.max(1) as usize,
             Generator::Listing => 1,
         };
         let limit = result.bytes as f64 / bandwidth.for_threads(threads);
@@ -647,7 +670,9 @@ fn main() {
         "How to read the tables:\n\n\
          - **ns/vertex**: the median time of one pass over the scene (every call once) divided by \
          its vertices. Every configuration runs on the same buffers, interleaved round by round; \
-         each call allocates its own scratch, as a caller without scratch of its own has it.\n\
+         each call allocates its own scratch, as a caller without scratch of its own has it, \
+         except in the rows marked *caller scratch*, which pass one buffer allocated before the \
+         timing (as the C port allocates its own, those rows show what the allocation costs).\n\
          - **vs C port**: that time over the time of `c_tests/listing.c`, the C port of the listing \
          (compiled by `build.rs` at the profile's optimization level, `-O3` in release, with \
          `-ffp-contract=off`).\n\
@@ -757,7 +782,7 @@ fn summary(results: &[SceneResult], configs: &[Config]) -> String {
         for (k, config) in configs
             .iter()
             .enumerate()
-            .filter(|(_, c)| matches!(c.generator, Generator::Library(_)))
+            .filter(|(_, c)| !matches!(c.generator, Generator::Listing))
         {
             let per_call = r.measured[k].median;
             writeln!(

@@ -75,7 +75,7 @@ pub fn generate_into(
 
     // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners;
     //    with several workers, each adds to its own range of vertices, in triangle order.
-    let workers = parallel::worker_count(options.threads, vertex_count);
+    let workers = parallel::worker_count(options.threads, mesh);
     let accumulate_range = |part: &mut Scratch| match (options.degenerate_policy, mesh.texcoords) {
         (DegeneratePolicy::Legacy, Some(uvs)) => legacy::accumulate(mesh, uvs, options.flip_v, part),
         _ => accumulate::accumulate(mesh, options, part),

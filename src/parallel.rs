@@ -4,6 +4,7 @@
 //! its triangles in triangle order and the result is bit-identical whatever the thread count.
 #![forbid(unsafe_code)]
 
+use crate::mesh::Mesh;
 use crate::report::Report;
 use crate::status::Error;
 
@@ -11,11 +12,41 @@ use crate::status::Error;
 /// saves, so small meshes stay on the calling thread.
 const MIN_VERTICES_PER_WORKER: usize = 32 * 1024;
 
+/// Every how many triangles [`split_pays_off`] looks at one.
+const LOCALITY_SAMPLE_STEP: usize = 16;
+
 /// How many workers a call uses: at most `threads`, at least 1.
-pub fn worker_count(threads: u32, vertex_count: usize) -> usize {
-    (threads.max(1) as usize)
+pub fn worker_count(threads: u32, mesh: &Mesh) -> usize {
+    let vertex_count = mesh.vertex_count();
+    let workers = (threads.max(1) as usize)
         .min(vertex_count / MIN_VERTICES_PER_WORKER)
-        .max(1)
+        .max(1);
+    if workers > 1 && !split_pays_off(mesh, &range_ends(vertex_count, workers)) {
+        return 1;
+    }
+    workers
+}
+
+/// Whether splitting the vertices into ranges `ends` saves time: every worker reads each triangle
+/// that has a corner in its range, so when the triangle order does not follow the vertex order
+/// (most triangles spanning several ranges), each worker would redo nearly the whole mesh. Looks
+/// at every 16th triangle; true when none of the workers would see more than 3/4 of them.
+fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
+    let Ok(triangle_count) = mesh.indices.triangle_count(mesh.vertex_count()) else {
+        return true;
+    };
+    let mut seen = vec![0usize; ends.len()];
+    let mut sampled = 0usize;
+    for t in (0..triangle_count).step_by(LOCALITY_SAMPLE_STEP) {
+        let workers = mesh.indices.triangle(t).map(|v| ends.partition_point(|&end| end <= v));
+        for (k, &w) in workers.iter().enumerate() {
+            if w < seen.len() && !workers[..k].contains(&w) {
+                seen[w] += 1;
+            }
+        }
+        sampled += 1;
+    }
+    seen.iter().all(|&count| 4 * count <= 3 * sampled)
 }
 
 /// The exclusive ends of `workers` near-equal consecutive ranges of `vertex_count` vertices.
@@ -57,10 +88,46 @@ mod tests {
     fn ranges_cover_every_vertex_once() {
         assert_eq!(range_ends(10, 3), vec![3, 6, 10]);
         assert_eq!(range_ends(usize::MAX, 2).last(), Some(&usize::MAX));
-        assert_eq!(worker_count(8, 1000), 1);
-        assert_eq!(worker_count(0, 10_000_000), 1);
-        assert_eq!(worker_count(4, 10_000_000), 4);
-        assert_eq!(worker_count(4, 3 * MIN_VERTICES_PER_WORKER), 3);
+    }
+
+    /// A strip of `n` vertices with triangles of consecutive vertices, or (`scattered`) with one
+    /// corner in each half of the vertex range.
+    fn strip(n: usize, scattered: bool) -> (Vec<[f32; 3]>, Vec<u32>) {
+        let positions = vec![[0.0f32; 3]; n];
+        let half = (n / 2) as u32;
+        let indices = (0..n as u32 / 2 - 2)
+            .flat_map(|i| {
+                if scattered {
+                    [i, half + i, i + 1]
+                } else {
+                    [2 * i, 2 * i + 1, 2 * i + 2]
+                }
+            })
+            .collect();
+        (positions, indices)
+    }
+
+    fn workers_for(threads: u32, n: usize, scattered: bool) -> usize {
+        use crate::mesh::Indices;
+        use crate::strided::Strided;
+        let (positions, indices) = strip(n, scattered);
+        let mesh = Mesh {
+            positions: Strided::from_slice(&positions),
+            normals: Strided::from_slice(&positions),
+            texcoords: None,
+            indices: Indices::U32(Strided::from_slice(&indices)),
+        };
+        worker_count(threads, &mesh)
+    }
+
+    #[test]
+    fn workers_follow_threads_size_and_locality() {
+        assert_eq!(workers_for(8, 1000, false), 1);
+        assert_eq!(workers_for(0, 1_000_000, false), 1);
+        assert_eq!(workers_for(4, 1_000_000, false), 4);
+        assert_eq!(workers_for(4, 3 * MIN_VERTICES_PER_WORKER, false), 3);
+        // Every triangle spans both halves: both workers would read all of them.
+        assert_eq!(workers_for(2, 1_000_000, true), 1);
     }
 
     #[test]
