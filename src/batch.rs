@@ -10,7 +10,7 @@ use crate::status::Error;
 use crate::strided::Strided;
 
 /// Triangles per batch: the gathered copies (about 8 KiB) stay in the L1 cache.
-pub const LANES: usize = 64;
+pub(crate) const LANES: usize = 64;
 
 /// One value per triangle of a batch.
 pub type Lanes = [f32; LANES];

@@ -8,6 +8,12 @@ use tbasis::ffi::{
 };
 use tbasis::{from_tangent_space, to_tangent_space, Error};
 
+#[allow(dead_code)]
+#[path = "common/scenes.rs"]
+mod scenes;
+
+use scenes::{cross, dot};
+
 type M3 = [[f64; 3]; 3];
 
 /// splitmix64: a fixed, dependency-free sequence.
@@ -44,18 +50,6 @@ impl Rng {
 
 fn wide<const N: usize>(v: [f32; N]) -> [f64; N] {
     v.map(f64::from)
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn norm(a: [f64; 3]) -> f64 {
