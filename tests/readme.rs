@@ -30,11 +30,13 @@ fn marked_blocks(readme: &str) -> Vec<(String, Vec<String>)> {
     blocks
 }
 
-/// A line without its indentation, or a doc comment's `///` / `//!` (where doctests live).
+/// A line without its indentation and without the comment leader of a doc comment (`///`, `//!`:
+/// where doctests live) or of a C block comment (`*`: where build commands are written down).
 fn bare(line: &str) -> &str {
     let line = line.trim();
-    line.strip_prefix("///")
-        .or_else(|| line.strip_prefix("//!"))
+    ["///", "//!", "*"]
+        .iter()
+        .find_map(|leader| line.strip_prefix(leader))
         .unwrap_or(line)
         .trim()
 }
@@ -80,6 +82,7 @@ fn a_changed_line_is_caught() {
     let block = vec!["let a = 1;".to_string(), "let b = 2;".to_string()];
     assert_eq!(first_missing_line(&block, "  let a = 1;\n  let b = 2;\n"), None);
     assert_eq!(first_missing_line(&block, "/// let a = 1;\n/// let b = 2;\n"), None);
+    assert_eq!(first_missing_line(&block, " *   let a = 1;\n *   let b = 2;\n"), None);
     assert_eq!(
         first_missing_line(&block, "let b = 2;\nlet a = 1;\n"),
         Some("let b = 2;".to_string())
