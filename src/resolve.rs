@@ -35,7 +35,7 @@ impl VertexNormal {
         match length_and_direction(Vec3::from_array(raw)) {
             Some((length, unit)) => VertexNormal {
                 unit: Some(unit),
-                was_unit: (length - 1.0).abs() <= 1e-3,
+                was_unit: is_unit_length(length),
             },
             None => VertexNormal {
                 unit: None,
@@ -43,6 +43,12 @@ impl VertexNormal {
             },
         }
     }
+}
+
+/// A normal's length counts as unit within 1e-3.
+#[inline(always)]
+fn is_unit_length(length: f32) -> bool {
+    (length - 1.0).abs() <= 1e-3
 }
 
 /// The outcome for one vertex.
@@ -58,16 +64,22 @@ pub enum Resolved {
 /// normal from it and normalizes it, if what is left is usable.
 #[inline(always)]
 pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
-    let right = Vec3::from_array(sums.primary);
-    let left = Vec3::from_array(sums.secondary);
-    let (sum, w) = if right.length_squared() >= left.length_squared() {
-        (right, 1.0)
-    } else {
-        (left, -1.0)
-    };
+    let (sum, w) = longer_side(sums);
     match orthonormalize(sum, normal) {
         Some((in_plane, tangent)) if in_plane > USABLE_SHARE * sums.weight => Resolved::Measured(tangent, w),
         _ => Resolved::Missing,
+    }
+}
+
+/// The sum of the handedness whose tangents sum longer, and its `w`.
+#[inline(always)]
+fn longer_side(sums: &VertexSums) -> (Vec3, f32) {
+    let right = Vec3::from_array(sums.primary);
+    let left = Vec3::from_array(sums.secondary);
+    if right.length_squared() >= left.length_squared() {
+        (right, 1.0)
+    } else {
+        (left, -1.0)
     }
 }
 
@@ -183,15 +195,12 @@ impl ResolvedLanes {
         }
         for (i, sums) in sums.iter().enumerate() {
             let (length, unit, normal_exact) = length_and_direction_fast(lane3(&raw, i));
-            let right = Vec3::from_array(sums.primary);
-            let left = Vec3::from_array(sums.secondary);
-            let pick_right = right.length_squared() >= left.length_squared();
-            let sum = if pick_right { right } else { left };
+            let (sum, w) = longer_side(sums);
             let (in_plane, tangent, tangent_exact) = orthonormalize_fast(sum, unit);
             self.exact[i] = normal_exact & tangent_exact;
-            self.was_unit[i] = (length - 1.0).abs() <= 1e-3;
+            self.was_unit[i] = is_unit_length(length);
             self.measured[i] = in_plane > USABLE_SHARE * sums.weight;
-            self.w[i] = if pick_right { 1.0 } else { -1.0 };
+            self.w[i] = w;
             for axis in 0..3 {
                 self.normal[axis][i] = unit[axis];
                 self.tangent[axis][i] = tangent[axis];

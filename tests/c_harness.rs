@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::artifacts::library_dir;
-use common::tools::missing;
+use common::tools::{missing, run, run_ok};
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off"];
@@ -51,21 +51,6 @@ fn compiler(cpp: bool, out_dir: &Path) -> Command {
         .out_dir(out_dir)
         .get_compiler()
         .to_command()
-}
-
-/// Runs `command`, printing its output; panics with `what` if it cannot start.
-fn run(mut command: Command, what: &str) -> Output {
-    let output = command
-        .output()
-        .unwrap_or_else(|e| panic!("{what}: cannot run {command:?}: {e}"));
-    print!("{}", String::from_utf8_lossy(&output.stdout));
-    eprint!("{}", String::from_utf8_lossy(&output.stderr));
-    output
-}
-
-fn run_ok(command: Command, what: &str) {
-    let output = run(command, what);
-    assert!(output.status.success(), "{what} failed: {}", output.status);
 }
 
 fn c_sources() -> Vec<PathBuf> {

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::artifacts::soname;
-use common::tools::missing;
+use common::tools::{missing, run_ok};
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
@@ -62,21 +62,6 @@ fn have(tool: &str, package: &str, part: &str) -> bool {
     }
     missing(&format!("{tool} (Debian: {package})"), part);
     false
-}
-
-/// Runs `command` and returns its output; panics unless it exits with 0.
-fn run_ok(mut command: Command, what: &str) -> Output {
-    let output = command
-        .output()
-        .unwrap_or_else(|e| panic!("{what}: cannot run {command:?}: {e}"));
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        output.status.success(),
-        "{what} failed ({}): {command:?}\n--- stdout\n{stdout}\n--- stderr\n{stderr}",
-        output.status
-    );
-    output
 }
 
 fn stdout_of(output: &Output) -> String {

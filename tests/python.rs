@@ -10,7 +10,7 @@ use std::path::Path;
 use std::process::Command;
 
 use common::artifacts::library_dir;
-use common::tools::missing;
+use common::tools::{missing, run};
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const PYTHON: &str = "python3";
@@ -55,15 +55,13 @@ fn python_binding_tests_pass() {
     assert!(library.is_file(), "{} was not built", library.display());
 
     // No bytecode or pytest cache written into the source tree.
-    let output = Command::new(PYTHON)
+    let mut pytest = Command::new(PYTHON);
+    pytest
         .args(["-m", "pytest", "-q", "-p", "no:cacheprovider", "bindings/python"])
         .current_dir(Path::new(CRATE_DIR))
         .env("TBASIS_LIBRARY", &library)
-        .env("PYTHONDONTWRITEBYTECODE", "1")
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {PYTHON} -m pytest: {e}"));
-    print!("{}", String::from_utf8_lossy(&output.stdout));
-    eprint!("{}", String::from_utf8_lossy(&output.stderr));
+        .env("PYTHONDONTWRITEBYTECODE", "1");
+    let output = run(pytest, "python3 -m pytest");
     assert!(
         output.status.success(),
         "pytest bindings/python failed ({}) with TBASIS_LIBRARY={}",
