@@ -4,7 +4,7 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::batch::{lane3, lanes_in_use, BatchReader, Lanes, TriangleBatch, LANES};
+use crate::batch::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
 use crate::degenerate::Shape;
 use crate::frame::{length_and_direction, length_and_direction_fast};
 use crate::mesh::Mesh;
@@ -18,10 +18,13 @@ use crate::status::Error;
 /// Both the UV and the position edges are divided by their largest component first: the quality
 /// test and the 2x2 solve then work on numbers near 1 whatever the scale of the mesh or its UVs.
 struct Faces {
-    /// The triangle is measurable: finite, and UV and position quality at least the threshold.
-    valid: [bool; LANES],
-    /// The fast path's lengths over- or underflowed: redo the lane with [`length_and_direction`].
-    careful: [bool; LANES],
+    /// 1 when the triangle is measurable: finite, and UV and position quality at least the
+    /// threshold; else 0. (Lane flags are `u32`: a byte per lane keeps the loop from compiling
+    /// to SIMD.)
+    valid: [u32; LANES],
+    /// 1 when the fast path's lengths over- or underflowed: the lane is redone with
+    /// [`length_and_direction`].
+    careful: [u32; LANES],
     /// Direction of dP/du, unit length.
     direction: [Lanes; 3],
     /// `|dP/du|`, kept apart from the direction so that neither overflows at extreme UV scales
@@ -44,8 +47,8 @@ struct Faces {
 impl Faces {
     fn new() -> Self {
         Faces {
-            valid: [false; LANES],
-            careful: [false; LANES],
+            valid: [0; LANES],
+            careful: [0; LANES],
             direction: [[0.0; LANES]; 3],
             length: [0.0; LANES],
             edges: [[[0.0; LANES]; 3]; 2],
@@ -71,8 +74,10 @@ impl Faces {
             let uv_scale = e1.abs().max(e2.abs()).max_element();
             let position_scale = q1.abs().max(q2.abs()).max_element();
             // Also false for NaN: a non-finite input makes the triangle degenerate.
-            let measurable =
-                uv_scale > 0.0 && uv_scale < f32::INFINITY && position_scale > 0.0 && position_scale < f32::INFINITY;
+            let measurable = (uv_scale > 0.0)
+                & (uv_scale < f32::INFINITY)
+                & (position_scale > 0.0)
+                & (position_scale < f32::INFINITY);
             let (e1, e2) = (e1 * (1.0 / uv_scale), e2 * (1.0 / uv_scale));
             let (s1, s2) = (q1 * (1.0 / position_scale), q2 * (1.0 / position_scale));
             let det = e1.perp_dot(e2);
@@ -90,14 +95,13 @@ impl Faces {
             let direction = direction * det.signum();
             let length = numerator_length / (det.abs() * uv_scale);
 
-            self.valid[i] = measurable & uv_shape.at_least(threshold) & position_shape.at_least(threshold);
-            self.careful[i] = !(in_range && length.is_finite());
-            for axis in 0..3 {
-                self.direction[axis][i] = direction[axis];
-                self.edges[0][axis][i] = s1[axis];
-                self.edges[1][axis][i] = s2[axis];
-                self.face_normal[axis][i] = face_normal[axis];
-            }
+            let valid = measurable & uv_shape.at_least(threshold) & position_shape.at_least(threshold);
+            self.valid[i] = u32::from(valid);
+            self.careful[i] = u32::from(!(in_range & length.is_finite()));
+            set_lane3(&mut self.direction, i, direction.to_array());
+            set_lane3(&mut self.edges[0], i, s1.to_array());
+            set_lane3(&mut self.edges[1], i, s2.to_array());
+            set_lane3(&mut self.face_normal, i, face_normal.to_array());
             self.length[i] = length;
             self.twice_area[i] = position_shape.twice_area;
             self.position_scale[i] = position_scale;
@@ -105,7 +109,7 @@ impl Faces {
             self.confidence[i] = uv_shape.confidence();
         }
         for i in 0..batch.len {
-            if self.valid[i] && self.careful[i] {
+            if self.valid[i] & self.careful[i] != 0 {
                 self.solve_carefully(batch, i, v_sign);
             }
         }
@@ -132,12 +136,10 @@ impl Faces {
             .map(|(numerator_length, direction)| (numerator_length / (det.abs() * uv_scale), direction))
             .filter(|(length, _)| length.is_finite());
         let Some((length, direction)) = solved else {
-            self.valid[i] = false;
+            self.valid[i] = 0;
             return;
         };
-        for axis in 0..3 {
-            self.direction[axis][i] = direction[axis] * det.signum();
-        }
+        set_lane3(&mut self.direction, i, (direction * det.signum()).to_array());
         self.length[i] = length;
     }
 }
@@ -147,7 +149,8 @@ impl Faces {
 struct Corners {
     tangent: [[Lanes; 3]; 3],
     weight: [Lanes; 3],
-    right_handed: [[bool; LANES]; 3],
+    /// 1 for a right-handed corner, else 0 (`u32` for the reason [`Faces::valid`] gives).
+    right_handed: [[u32; LANES]; 3],
 }
 
 impl Corners {
@@ -155,7 +158,7 @@ impl Corners {
         Corners {
             tangent: [[[0.0; LANES]; 3]; 3],
             weight: [[0.0; LANES]; 3],
-            right_handed: [[false; LANES]; 3],
+            right_handed: [[0; LANES]; 3],
         }
     }
 
@@ -193,7 +196,7 @@ impl Corners {
                 // non-finite normal says nothing about it.
                 let normal = lane3(normals, i);
                 let facing_away = normal.is_finite() & (normal.dot(lane3(&faces.face_normal, i)) < 0.0);
-                self.right_handed[k][i] = (faces.det[i] > 0.0) != facing_away;
+                self.right_handed[k][i] = u32::from((faces.det[i] > 0.0) != facing_away);
             }
         }
     }
@@ -206,9 +209,7 @@ impl Corners {
             let (tangent, weight) = corner(i);
             let weight = weight * faces.confidence[i];
             let tangent = tangent * weight;
-            for axis in 0..3 {
-                self.tangent[k][axis][i] = tangent[axis];
-            }
+            set_lane3(&mut self.tangent[k], i, tangent.to_array());
             self.weight[k][i] = weight;
         }
     }
@@ -233,11 +234,11 @@ fn angle_corner(
 #[inline(always)]
 fn project(direction: Vec3, normal: Vec3) -> Vec3 {
     let n_squared = normal.length_squared();
-    let usable = n_squared > 0.0 && n_squared.is_finite();
+    let usable = (n_squared > 0.0) & n_squared.is_finite();
     let projected = direction - normal * (normal.dot(direction) / n_squared);
     let projected = if usable { projected } else { direction };
     let inverse_length = 1.0 / projected.length();
-    if inverse_length.is_finite() && inverse_length > 0.0 {
+    if inverse_length.is_finite() & (inverse_length > 0.0) {
         projected * inverse_length
     } else {
         Vec3::ZERO
@@ -297,12 +298,15 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
     let v_sign = if options.flip_v { -1.0 } else { 1.0 };
     let owned = scratch.first..scratch.first + scratch.flags.len();
     let mut reader = BatchReader::new(mesh, texcoords, owned, true)?;
-    let (mut batch, mut faces, mut corners) = (TriangleBatch::new(), Faces::new(), Corners::new());
+    // Each in its own let, so that the 16 KiB of lanes are built in place rather than moved.
+    let mut batch = TriangleBatch::new();
+    let mut faces = Faces::new();
+    let mut corners = Corners::new();
     while reader.fill(&mut batch)? {
         faces.solve(&batch, v_sign, options.degenerate_threshold);
         corners.weigh(options.method, &faces, &batch);
         for lane in 0..batch.len {
-            if !faces.valid[lane] {
+            if faces.valid[lane] == 0 {
                 if scratch.slot(batch.vertex[0][lane]).is_some() {
                     report.note_degenerate(batch.triangle[lane]);
                 }
@@ -323,7 +327,7 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
                     continue;
                 };
                 let sums = &mut scratch.sums[slot];
-                let side = if corners.right_handed[k][lane] {
+                let side = if corners.right_handed[k][lane] != 0 {
                     &mut sums.primary
                 } else {
                     &mut sums.secondary

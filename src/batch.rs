@@ -29,6 +29,14 @@ pub fn lane3(lanes: &[Lanes; 3], i: usize) -> Vec3 {
     Vec3::new(lanes[0][i], lanes[1][i], lanes[2][i])
 }
 
+/// Stores `value` in lane `i` of three component arrays.
+#[inline(always)]
+pub fn set_lane3(lanes: &mut [Lanes; 3], i: usize, value: [f32; 3]) {
+    for (component, value) in lanes.iter_mut().zip(value) {
+        component[i] = value;
+    }
+}
+
 /// A batch of triangles and the attributes of their corners, `[corner][component][lane]`.
 pub struct TriangleBatch {
     /// Triangles in the batch (the lanes in use).
@@ -102,18 +110,12 @@ impl<'m> BatchReader<'m> {
             batch.triangle[lane] = t;
             for (k, &v) in corners.iter().enumerate() {
                 batch.vertex[k][lane] = v;
-                let p = self.mesh.positions.get(v);
+                set_lane3(&mut batch.position[k], lane, self.mesh.positions.get(v));
                 let uv = self.texcoords.get(v);
-                for (component, value) in batch.position[k].iter_mut().zip(p) {
-                    component[lane] = value;
-                }
                 batch.texcoord[k][0][lane] = uv[0];
                 batch.texcoord[k][1][lane] = uv[1];
                 if self.with_normals {
-                    let n = self.mesh.normals.get(v);
-                    for (component, value) in batch.normal[k].iter_mut().zip(n) {
-                        component[lane] = value;
-                    }
+                    set_lane3(&mut batch.normal[k], lane, self.mesh.normals.get(v));
                 }
             }
             batch.len += 1;

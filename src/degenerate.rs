@@ -41,7 +41,7 @@ impl Shape {
     #[inline(always)]
     pub fn at_least(&self, threshold: f32) -> bool {
         let scaled_area = EQUILATERAL * self.twice_area;
-        scaled_area > 0.0 && scaled_area >= threshold * self.squared_edges
+        (scaled_area > 0.0) & (scaled_area >= threshold * self.squared_edges)
     }
 
     /// How much of its weight the triangle keeps: `min(1, q / FULL_WEIGHT_QUALITY)`.

@@ -29,7 +29,7 @@ pub fn length_and_direction(v: Vec3) -> Option<(f32, Vec3)> {
 pub fn length_and_direction_fast(v: Vec3) -> (f32, Vec3, bool) {
     let squared = v.length_squared();
     let length = squared.sqrt();
-    (length, v * (1.0 / length), squared > 1e-30 && squared < 1e30)
+    (length, v * (1.0 / length), (squared > 1e-30) & (squared < 1e30))
 }
 
 #[cold]

@@ -7,9 +7,9 @@
 
 use glam::Vec3;
 
-use crate::mesh::{Mesh, OutputPart};
+use crate::mesh::{Mesh, OutputPart, PerIndexType};
 use crate::report::Report;
-use crate::scratch::{flag, Scratch};
+use crate::scratch::{flag, Scratch, VertexSums};
 use crate::status::Error;
 use crate::strided::Strided;
 
@@ -23,16 +23,96 @@ pub fn accumulate(
     flip_v: bool,
     scratch: &mut Scratch,
 ) -> Result<Report, Error> {
-    let mut report = Report::default();
+    let triangle_count = mesh.indices.triangle_count(mesh.vertex_count())?;
     let v_sign = if flip_v { -1.0 } else { 1.0 };
-    for a in 0..mesh.indices.triangle_count(mesh.vertex_count())? {
-        let [i1, i2, i3] = mesh.checked_triangle(a)?;
-        let slots = [i1, i2, i3].map(|i| scratch.slot(i));
-        if slots == [None; 3] {
-            continue;
+    let listing = Listing {
+        mesh,
+        texcoords,
+        v_sign,
+        triangle_count,
+    };
+    mesh.indices.with_corner_reader(FirstLoop { listing, scratch })
+}
+
+/// The inputs of the listing's first loop.
+struct Listing<'m> {
+    mesh: &'m Mesh<'m>,
+    texcoords: Strided<'m, [f32; 2]>,
+    v_sign: f32,
+    triangle_count: usize,
+}
+
+/// The first loop into one worker's scratch.
+struct FirstLoop<'m, 's, 'a> {
+    listing: Listing<'m>,
+    scratch: &'s mut Scratch<'a>,
+}
+
+impl PerIndexType for FirstLoop<'_, '_, '_> {
+    type Output = Result<Report, Error>;
+
+    /// A scratch holding every vertex (one worker) skips the test of whether it holds a corner.
+    #[inline(always)]
+    fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
+        let FirstLoop { listing, scratch } = self;
+        let vertex_count = listing.mesh.vertex_count();
+        if scratch.first == 0 && scratch.flags.len() == vertex_count {
+            let (sums, flags) = (&mut scratch.sums[..vertex_count], &mut scratch.flags[..vertex_count]);
+            listing.sweep(sums, flags, 0, corners, Some)
+        } else {
+            let (first, len) = (scratch.first, scratch.flags.len());
+            let (sums, flags) = (&mut scratch.sums[..len], &mut scratch.flags[..len]);
+            let slot = move |v: usize| Some(v.wrapping_sub(first)).filter(|&slot| slot < len);
+            listing.sweep(sums, flags, first, corners, slot)
         }
-        let (v1, v2, v3) = (mesh.positions.get(i1), mesh.positions.get(i2), mesh.positions.get(i3));
-        let (w1, w2, w3) = (texcoords.get(i1), texcoords.get(i2), texcoords.get(i3));
+    }
+}
+
+impl Listing<'_> {
+    /// The triangles in order; `slot(v)` is where vertex `v` sits in `sums` and `flags`, if there.
+    #[inline(always)]
+    fn sweep(
+        &self,
+        sums: &mut [VertexSums],
+        flags: &mut [u8],
+        first: usize,
+        corners: impl Fn(usize) -> [usize; 3],
+        slot: impl Fn(usize) -> Option<usize>,
+    ) -> Result<Report, Error> {
+        let mut report = Report::default();
+        let vertex_count = self.mesh.vertex_count();
+        for a in 0..self.triangle_count {
+            let [i1, i2, i3] = corners(a);
+            if i1.max(i2).max(i3) >= vertex_count {
+                return Err(Error::IndexOutOfRange);
+            }
+            if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
+                continue;
+            }
+            let (sdir, tdir, orientation) = self.solve(i1, i2, i3);
+            if orientation == 0 && i1.wrapping_sub(first) < flags.len() {
+                report.note_degenerate(a);
+            }
+            for v in [i1, i2, i3] {
+                let Some(slot) = slot(v) else { continue };
+                let vertex = &mut sums[slot];
+                for k in 0..3 {
+                    vertex.primary[k] += sdir[k];
+                    vertex.secondary[k] += tdir[k];
+                }
+                flags[slot] |= flag::REFERENCED | orientation;
+            }
+        }
+        Ok(report)
+    }
+
+    /// One triangle of the listing: `sdir`, `tdir`, and the orientation flag of its UV winding
+    /// (0 when the determinant is zero or an edge is not finite).
+    #[inline(always)]
+    fn solve(&self, i1: usize, i2: usize, i3: usize) -> ([f32; 3], [f32; 3], u8) {
+        let positions = self.mesh.positions;
+        let (v1, v2, v3) = (positions.get(i1), positions.get(i2), positions.get(i3));
+        let (w1, w2, w3) = (self.texcoords.get(i1), self.texcoords.get(i2), self.texcoords.get(i3));
 
         let x1 = v2[0] - v1[0];
         let x2 = v3[0] - v1[0];
@@ -43,8 +123,8 @@ pub fn accumulate(
 
         let s1 = w2[0] - w1[0];
         let s2 = w3[0] - w1[0];
-        let t1 = (w2[1] - w1[1]) * v_sign;
-        let t2 = (w3[1] - w1[1]) * v_sign;
+        let t1 = (w2[1] - w1[1]) * self.v_sign;
+        let t2 = (w3[1] - w1[1]) * self.v_sign;
 
         let det = s1 * t2 - s2 * t1;
         let r = 1.0f32 / det;
@@ -59,28 +139,19 @@ pub fn accumulate(
             (s1 * z2 - s2 * z1) * r,
         ];
 
-        let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2].iter().all(|x| x.is_finite());
+        // Without short-circuit: ten tests and no branch.
+        let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2]
+            .iter()
+            .fold(true, |all, x| all & x.is_finite());
         let orientation = if det == 0.0 || !finite {
-            if slots[0].is_some() {
-                report.note_degenerate(a);
-            }
             0
         } else if det > 0.0 {
             flag::POSITIVE_UV
         } else {
             flag::NEGATIVE_UV
         };
-
-        for slot in slots.into_iter().flatten() {
-            let sums = &mut scratch.sums[slot];
-            for k in 0..3 {
-                sums.primary[k] += sdir[k];
-                sums.secondary[k] += tdir[k];
-            }
-            scratch.flags[slot] |= flag::REFERENCED | orientation;
-        }
+        (sdir, tdir, orientation)
     }
-    Ok(report)
 }
 
 /// Second loop of the listing: `T' = normalize(t - n * dot(n, t))`,

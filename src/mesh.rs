@@ -2,7 +2,7 @@
 #![forbid(unsafe_code)]
 
 use crate::status::Error;
-use crate::strided::{Footprint, Strided, StridedMut};
+use crate::strided::{Element, Footprint, Strided, StridedMut};
 
 /// The index buffer: three indices per triangle, or none (triangle `i` is vertices `3i..3i+3`).
 #[derive(Clone, Copy)]
@@ -32,11 +32,21 @@ impl<'a> Indices<'a> {
     /// The vertices of triangle `t` (callers keep `t` below `triangle_count`).
     #[inline(always)]
     pub fn triangle(&self, t: usize) -> [usize; 3] {
-        let first = 3 * t;
         match self {
-            Indices::None => [first, first + 1, first + 2],
-            Indices::U16(view) => [0, 1, 2].map(|k| view.get(first + k) as usize),
-            Indices::U32(view) => [0, 1, 2].map(|k| view.get(first + k) as usize),
+            Indices::None => unindexed_corners(t),
+            Indices::U16(view) => indexed_corners(*view, t),
+            Indices::U32(view) => indexed_corners(*view, t),
+        }
+    }
+
+    /// Runs `job` with the reader of triangle corners for this index type, so that a loop over
+    /// the triangles inside it decides the index type once, not per triangle.
+    #[inline(always)]
+    pub(crate) fn with_corner_reader<J: PerIndexType>(&self, job: J) -> J::Output {
+        match *self {
+            Indices::None => job.run(unindexed_corners),
+            Indices::U16(view) => job.run(move |t| indexed_corners(view, t)),
+            Indices::U32(view) => job.run(move |t| indexed_corners(view, t)),
         }
     }
 
@@ -48,6 +58,24 @@ impl<'a> Indices<'a> {
             Indices::U32(view) => Some(view.footprint()),
         }
     }
+}
+
+/// Work compiled once per index type (see [`Indices::with_corner_reader`]).
+pub(crate) trait PerIndexType {
+    /// What the work returns.
+    type Output;
+    /// Does the work, reading triangle `t`'s vertices with `corners(t)`.
+    fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Self::Output;
+}
+
+#[inline(always)]
+fn unindexed_corners(t: usize) -> [usize; 3] {
+    [3 * t, 3 * t + 1, 3 * t + 2]
+}
+
+#[inline(always)]
+fn indexed_corners<T: Element + Into<u32>>(view: Strided<T>, t: usize) -> [usize; 3] {
+    [0, 1, 2].map(|k| view.get(3 * t + k).into() as usize)
 }
 
 /// A triangle mesh: per-vertex attributes as strided views, and its triangles.

@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::batch::{lane3, Lanes, LANES};
+use crate::batch::{lane3, lanes_in_use, set_lane3, Lanes, LANES};
 use crate::frame::{
     fallback_tangent, length_and_direction, length_and_direction_fast, orthonormalize, orthonormalize_fast,
     NO_NORMAL_TANGENT,
@@ -64,7 +64,7 @@ pub enum Resolved {
 /// normal from it and normalizes it, if what is left is usable.
 #[inline(always)]
 pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
-    let (sum, w) = longer_side(sums);
+    let (sum, w) = longer_side(Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
     match orthonormalize(sum, normal) {
         Some((in_plane, tangent)) if in_plane > USABLE_SHARE * sums.weight => Resolved::Measured(tangent, w),
         _ => Resolved::Missing,
@@ -73,9 +73,7 @@ pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
 
 /// The sum of the handedness whose tangents sum longer, and its `w`.
 #[inline(always)]
-fn longer_side(sums: &VertexSums) -> (Vec3, f32) {
-    let right = Vec3::from_array(sums.primary);
-    let left = Vec3::from_array(sums.secondary);
+fn longer_side(right: Vec3, left: Vec3) -> (Vec3, f32) {
     if right.length_squared() >= left.length_squared() {
         (right, 1.0)
     } else {
@@ -118,12 +116,12 @@ pub fn write_measured(
         lanes.resolve(mesh, first, sums);
         for (i, sums) in sums.iter_mut().enumerate() {
             let (v, slot) = (first + i, batch * LANES + i);
-            let (normal, resolved) = if lanes.exact[i] {
+            let (normal, resolved) = if lanes.exact[i] != 0 {
                 let normal = VertexNormal {
                     unit: Some(lane3(&lanes.normal, i)),
-                    was_unit: lanes.was_unit[i],
+                    was_unit: lanes.was_unit[i] != 0,
                 };
-                let resolved = if lanes.measured[i] {
+                let resolved = if lanes.measured[i] != 0 {
                     Resolved::Measured(lane3(&lanes.tangent, i), lanes.w[i])
                 } else {
                     Resolved::Missing
@@ -161,13 +159,19 @@ pub fn write_measured(
 }
 
 /// [`VertexNormal::new`] and [`resolve`] for a batch of vertices, one per lane, where both take
-/// their common path.
+/// their common path. Lane flags are `u32` (1 or 0): a byte per lane keeps the loop from
+/// compiling to SIMD.
 struct ResolvedLanes {
-    /// The lane took the common path; otherwise the careful one decides.
-    exact: [bool; LANES],
+    /// The caller's normals and the vertices' sums, gathered.
+    raw_normal: [Lanes; 3],
+    right: [Lanes; 3],
+    left: [Lanes; 3],
+    weight: Lanes,
+    /// 1 when the lane took the common path; otherwise the careful one decides.
+    exact: [u32; LANES],
     normal: [Lanes; 3],
-    was_unit: [bool; LANES],
-    measured: [bool; LANES],
+    was_unit: [u32; LANES],
+    measured: [u32; LANES],
     tangent: [Lanes; 3],
     w: Lanes,
 }
@@ -175,10 +179,14 @@ struct ResolvedLanes {
 impl ResolvedLanes {
     fn new() -> Self {
         ResolvedLanes {
-            exact: [false; LANES],
+            raw_normal: [[0.0; LANES]; 3],
+            right: [[0.0; LANES]; 3],
+            left: [[0.0; LANES]; 3],
+            weight: [0.0; LANES],
+            exact: [0; LANES],
             normal: [[0.0; LANES]; 3],
-            was_unit: [false; LANES],
-            measured: [false; LANES],
+            was_unit: [0; LANES],
+            measured: [0; LANES],
             tangent: [[0.0; LANES]; 3],
             w: [0.0; LANES],
         }
@@ -186,20 +194,19 @@ impl ResolvedLanes {
 
     /// Vertices `first..first + sums.len()`.
     fn resolve(&mut self, mesh: &Mesh, first: usize, sums: &[VertexSums]) {
-        let mut raw = [[0.0f32; LANES]; 3];
-        for (i, _) in sums.iter().enumerate() {
-            let n = mesh.normals.get(first + i);
-            for axis in 0..3 {
-                raw[axis][i] = n[axis];
-            }
-        }
         for (i, sums) in sums.iter().enumerate() {
-            let (length, unit, normal_exact) = length_and_direction_fast(lane3(&raw, i));
-            let (sum, w) = longer_side(sums);
+            set_lane3(&mut self.raw_normal, i, mesh.normals.get(first + i));
+            set_lane3(&mut self.right, i, sums.primary);
+            set_lane3(&mut self.left, i, sums.secondary);
+            self.weight[i] = sums.weight;
+        }
+        for i in 0..lanes_in_use(sums.len()) {
+            let (length, unit, normal_exact) = length_and_direction_fast(lane3(&self.raw_normal, i));
+            let (sum, w) = longer_side(lane3(&self.right, i), lane3(&self.left, i));
             let (in_plane, tangent, tangent_exact) = orthonormalize_fast(sum, unit);
-            self.exact[i] = normal_exact & tangent_exact;
-            self.was_unit[i] = is_unit_length(length);
-            self.measured[i] = in_plane > USABLE_SHARE * sums.weight;
+            self.exact[i] = u32::from(normal_exact & tangent_exact);
+            self.was_unit[i] = u32::from(is_unit_length(length));
+            self.measured[i] = u32::from(in_plane > USABLE_SHARE * self.weight[i]);
             self.w[i] = w;
             for axis in 0..3 {
                 self.normal[axis][i] = unit[axis];
