@@ -9,7 +9,7 @@ use glam::Vec3;
 
 use crate::mesh::{Mesh, OutputPart, PerIndexType};
 use crate::report::Report;
-use crate::scratch::{flag, Scratch, VertexSums};
+use crate::scratch::{flag, slot_in, Scratch, VertexSums};
 use crate::status::Error;
 use crate::strided::Strided;
 
@@ -58,12 +58,11 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
         let vertex_count = listing.mesh.vertex_count();
         if scratch.first == 0 && scratch.flags.len() == vertex_count {
             let (sums, flags) = (&mut scratch.sums[..vertex_count], &mut scratch.flags[..vertex_count]);
-            listing.sweep(sums, flags, 0, corners, Some)
+            listing.sweep(sums, flags, corners, Some)
         } else {
             let (first, len) = (scratch.first, scratch.flags.len());
             let (sums, flags) = (&mut scratch.sums[..len], &mut scratch.flags[..len]);
-            let slot = move |v: usize| Some(v.wrapping_sub(first)).filter(|&slot| slot < len);
-            listing.sweep(sums, flags, first, corners, slot)
+            listing.sweep(sums, flags, corners, move |v| slot_in(v, first, len))
         }
     }
 }
@@ -75,22 +74,17 @@ impl Listing<'_> {
         &self,
         sums: &mut [VertexSums],
         flags: &mut [u8],
-        first: usize,
         corners: impl Fn(usize) -> [usize; 3],
         slot: impl Fn(usize) -> Option<usize>,
     ) -> Result<Report, Error> {
         let mut report = Report::default();
-        let vertex_count = self.mesh.vertex_count();
         for a in 0..self.triangle_count {
-            let [i1, i2, i3] = corners(a);
-            if i1.max(i2).max(i3) >= vertex_count {
-                return Err(Error::IndexOutOfRange);
-            }
+            let [i1, i2, i3] = self.mesh.checked(corners(a))?;
             if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
                 continue;
             }
             let (sdir, tdir, orientation) = self.solve(i1, i2, i3);
-            if orientation == 0 && i1.wrapping_sub(first) < flags.len() {
+            if orientation == 0 && slot(i1).is_some() {
                 report.note_degenerate(a);
             }
             for v in [i1, i2, i3] {

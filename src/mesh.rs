@@ -110,8 +110,13 @@ impl<'a> Mesh<'a> {
     /// The vertices of triangle `t`, each checked to be below the vertex count.
     #[inline(always)]
     pub(crate) fn checked_triangle(&self, t: usize) -> Result<[usize; 3], Error> {
-        let corners = self.indices.triangle(t);
-        if corners.iter().any(|&v| v >= self.vertex_count()) {
+        self.checked(self.indices.triangle(t))
+    }
+
+    /// `corners`, each checked to be below the vertex count.
+    #[inline(always)]
+    pub(crate) fn checked(&self, corners: [usize; 3]) -> Result<[usize; 3], Error> {
+        if corners[0].max(corners[1]).max(corners[2]) >= self.vertex_count() {
             return Err(Error::IndexOutOfRange);
         }
         Ok(corners)

@@ -51,6 +51,13 @@ pub fn scratch_size(vertex_count: usize) -> Option<usize> {
         .checked_add(align_of::<VertexSums>() - 1)
 }
 
+/// Where vertex `v` sits in a range of `len` vertices starting at `first`, if the range holds it.
+#[inline(always)]
+pub(crate) fn slot_in(v: usize, first: usize, len: usize) -> Option<usize> {
+    let slot = v.wrapping_sub(first);
+    (slot < len).then_some(slot)
+}
+
 /// The per-vertex working arrays of one call, or of one worker's consecutive range of vertices.
 pub struct Scratch<'s> {
     /// Running sums, one per vertex of the range.
@@ -65,8 +72,7 @@ impl<'s> Scratch<'s> {
     /// Where vertex `v` sits in this range's arrays, if the range holds it.
     #[inline(always)]
     pub fn slot(&self, v: usize) -> Option<usize> {
-        let slot = v.wrapping_sub(self.first);
-        (slot < self.flags.len()).then_some(slot)
+        slot_in(v, self.first, self.flags.len())
     }
 
     /// The same arrays cut at the vertices in `ends` (exclusive ends, increasing, the last the
