@@ -16,10 +16,10 @@
 #include <stdint.h>
 
 #define TBASIS_VERSION_MAJOR 0
-#define TBASIS_VERSION_MINOR 1
+#define TBASIS_VERSION_MINOR 2
 #define TBASIS_VERSION_PATCH 0
 /* TBASIS_VERSION_MAJOR * 1000000 + TBASIS_VERSION_MINOR * 1000 + TBASIS_VERSION_PATCH; compare with tbasis_version(). */
-#define TBASIS_VERSION (0 * 1000000 + 1 * 1000 + 0)
+#define TBASIS_VERSION (0 * 1000000 + 2 * 1000 + 0)
 
 
 // `index_type`: 16-bit indices.
@@ -41,7 +41,17 @@
 // `method`: unit face tangents with equal weights (per-face averaging).
 #define TBASIS_METHOD_UNIFORM 4
 
-// `degenerate_policy`: exactly the listing, bit for bit, including its inf/NaN.
+// `method`: exactly what mikktspace.c's `genTangSpaceDefault` hands to `setTSpaceBasic`, float
+// for float, per corner (`tbasis_generate_corners`): the tangents almost every normal map is
+// baked against. Needs `texcoords`. Its default policy (0) is LEGACY, which is exactly
+// mikktspace.c, including what it writes for degenerate and non-finite input; SKIP and INHERIT
+// differ only where mikktspace.c writes a non-finite, zero or non-unit tangent or one not
+// perpendicular to the normal, and there write a finite unit tangent perpendicular to it.
+// `tbasis_generate` gives each vertex its first corner's frame.
+#define TBASIS_METHOD_MIKKTSPACE 5
+
+// `degenerate_policy`: exactly the listing (or, with method MIKKTSPACE, exactly mikktspace.c),
+// bit for bit, including its inf/NaN.
 #define TBASIS_DEGENERATE_LEGACY 1
 
 // `degenerate_policy`: degenerate triangles contribute nothing; vertices left without a tangent
@@ -93,7 +103,8 @@ typedef struct tbasis_mesh {
 typedef struct tbasis_options {
   // A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`).
   uint32_t method;
-  // A `TBASIS_DEGENERATE_*` value; 0: the default (`TBASIS_DEGENERATE_INHERIT`).
+  // A `TBASIS_DEGENERATE_*` value; 0: the method's default (`TBASIS_DEGENERATE_LEGACY` for
+  // `TBASIS_METHOD_MIKKTSPACE`, `TBASIS_DEGENERATE_INHERIT` for the others).
   uint32_t degenerate_policy;
   // `TBASIS_FLAG_*` bits; unknown bits are an error.
   uint32_t flags;
@@ -143,6 +154,12 @@ typedef struct tbasis_report {
   // Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (normalized,
   // or ignored when it has no direction). Not counted by policy LEGACY.
   size_t abnormal_normals;
+  // Corners where method MIKKTSPACE with policy SKIP or INHERIT replaced what mikktspace.c
+  // gives (a non-finite, zero or non-unit tangent, or one not perpendicular to the normal).
+  size_t repaired_corners;
+  // Method MIKKTSPACE: vertices whose corners do not all get the same bits, the vertices
+  // `tbasis_split_corners` would duplicate. `tbasis_generate` gives each its first corner's.
+  size_t split_vertices;
 } tbasis_report;
 
 // Success.
@@ -247,6 +264,29 @@ tbasis_status tbasis_generate(const struct tbasis_mesh *mesh,
                               const struct tbasis_output *output,
                               struct tbasis_report *report);
 
+// Computes a unit tangent and handedness for every triangle corner: `tangents` receives
+// `float x, y, z, w` for corner `k` of triangle `t` at element `3t + k`, that is one element per
+// index (`index_count` elements), or per vertex when `mesh->indices` is NULL (`vertex_count`).
+//
+// With `TBASIS_METHOD_MIKKTSPACE` each corner gets exactly mikktspace.c's frame for it. The
+// per-vertex methods give each corner its vertex's frame, except at a mirror fold (a vertex used
+// by triangles of both UV orientations), where each corner gets the frame of its own side.
+//
+// - `mesh`, `options`, `report`: as for `tbasis_generate` (`options` and `report` may be NULL).
+// - `tangents`: `(corner_count - 1) * tangents_stride + 16` bytes, written only on `TBASIS_OK`;
+//   it must share no byte with an input or the scratch.
+// - `tangents_stride`: bytes from one corner's tangent to the next; at least 16.
+//
+// Returns the statuses of `tbasis_generate`; on any error no output byte has been written.
+//
+// # Safety
+// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
+tbasis_status tbasis_generate_corners(const struct tbasis_mesh *mesh,
+                                      const struct tbasis_options *options,
+                                      void *tangents,
+                                      size_t tangents_stride,
+                                      struct tbasis_report *report);
+
 // Drop-in for the original listing's `CalculateTangentArray`, with its packed layouts: `vertex`
 // and `normal` hold 3 floats per vertex, `texcoord` 2, `triangle` 3 `uint16_t` per triangle,
 // `tangent` receives 4 floats per vertex (`vertex_count * 16` bytes). Same results, bit for bit
@@ -266,9 +306,11 @@ tbasis_status tbasis_calculate_tangent_array(long vertex_count,
                                              const uint16_t *triangle,
                                              float *tangent);
 
-// Bytes of `options->scratch` a `tbasis_generate` call on `mesh` needs:
-// `vertex_count * 29 + 3`, or 0 when `vertex_count` is 0. Returns `SIZE_MAX` when `mesh` is NULL
-// or the size overflows. `options` may be NULL.
+// Bytes of `options->scratch` a `tbasis_generate` or `tbasis_generate_corners` call on `mesh`
+// with `options` needs: `vertex_count * 29 + 3` for the per-vertex methods and
+// `MIKKTSPACE_WORDS * 4 + 3` for `TBASIS_METHOD_MIKKTSPACE` (see the README), 0 when the mesh is
+// empty. Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
+// `options` may be NULL (the defaults).
 //
 // # Safety
 // `mesh` must be NULL or point to a readable `tbasis_mesh`.

@@ -175,7 +175,8 @@ impl Corners {
             let normals = &batch.normal[k];
             match method {
                 Method::Lengyel => self.set(k, lanes, |i| (lane3(&faces.direction, i), faces.length[i]), faces),
-                Method::Angle => match k {
+                // MIKKTSPACE has its own module and never comes here.
+                Method::Angle | Method::Mikktspace => match k {
                     0 => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (a, b)), faces),
                     1 => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (b - a, -a)), faces),
                     _ => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (-b, a - b)), faces),

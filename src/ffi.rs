@@ -10,14 +10,14 @@ use core::mem::size_of;
 use core::ptr;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use crate::generate::{generate_into, scratch_size};
+use crate::generate::{generate_corners_into, generate_into, scratch_bytes, scratch_size_for};
 use crate::mesh::{Indices, Mesh, Output};
 use crate::options::Options;
 use crate::report::Report;
 use crate::status::Error;
 use crate::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
 use crate::transform::{from_tangent_space, to_tangent_space};
-use crate::validate::check_overlaps;
+use crate::validate::{check_overlaps, check_written};
 
 /// Result of a call: `TBASIS_OK` (0) or one of the `TBASIS_ERROR_*` values, which never change.
 pub type tbasis_status = u32;
@@ -78,8 +78,17 @@ pub const TBASIS_METHOD_ANGLE: u32 = 2;
 pub const TBASIS_METHOD_AREA: u32 = 3;
 /// `method`: unit face tangents with equal weights (per-face averaging).
 pub const TBASIS_METHOD_UNIFORM: u32 = 4;
+/// `method`: exactly what mikktspace.c's `genTangSpaceDefault` hands to `setTSpaceBasic`, float
+/// for float, per corner (`tbasis_generate_corners`): the tangents almost every normal map is
+/// baked against. Needs `texcoords`. Its default policy (0) is LEGACY, which is exactly
+/// mikktspace.c, including what it writes for degenerate and non-finite input; SKIP and INHERIT
+/// differ only where mikktspace.c writes a non-finite, zero or non-unit tangent or one not
+/// perpendicular to the normal, and there write a finite unit tangent perpendicular to it.
+/// `tbasis_generate` gives each vertex its first corner's frame.
+pub const TBASIS_METHOD_MIKKTSPACE: u32 = 5;
 
-/// `degenerate_policy`: exactly the listing, bit for bit, including its inf/NaN.
+/// `degenerate_policy`: exactly the listing (or, with method MIKKTSPACE, exactly mikktspace.c),
+/// bit for bit, including its inf/NaN.
 pub const TBASIS_DEGENERATE_LEGACY: u32 = 1;
 /// `degenerate_policy`: degenerate triangles contribute nothing; vertices left without a tangent
 /// get the fallback frame built from their normal.
@@ -129,7 +138,8 @@ pub struct tbasis_mesh {
 pub struct tbasis_options {
     /// A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`).
     pub method: u32,
-    /// A `TBASIS_DEGENERATE_*` value; 0: the default (`TBASIS_DEGENERATE_INHERIT`).
+    /// A `TBASIS_DEGENERATE_*` value; 0: the method's default (`TBASIS_DEGENERATE_LEGACY` for
+    /// `TBASIS_METHOD_MIKKTSPACE`, `TBASIS_DEGENERATE_INHERIT` for the others).
     pub degenerate_policy: u32,
     /// `TBASIS_FLAG_*` bits; unknown bits are an error.
     pub flags: u32,
@@ -183,6 +193,12 @@ pub struct tbasis_report {
     /// Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (normalized,
     /// or ignored when it has no direction). Not counted by policy LEGACY.
     pub abnormal_normals: usize,
+    /// Corners where method MIKKTSPACE with policy SKIP or INHERIT replaced what mikktspace.c
+    /// gives (a non-finite, zero or non-unit tangent, or one not perpendicular to the normal).
+    pub repaired_corners: usize,
+    /// Method MIKKTSPACE: vertices whose corners do not all get the same bits, the vertices
+    /// `tbasis_split_corners` would duplicate. `tbasis_generate` gives each its first corner's.
+    pub split_vertices: usize,
 }
 
 impl From<Report> for tbasis_report {
@@ -195,8 +211,15 @@ impl From<Report> for tbasis_report {
             unreferenced_vertices: r.unreferenced_vertices,
             inherited_vertices: r.inherited_vertices,
             abnormal_normals: r.abnormal_normals,
+            repaired_corners: r.repaired_corners,
+            split_vertices: r.split_vertices,
         }
     }
+}
+
+/// Runs `body`, turning a panic (a library bug) into an error.
+fn boundary_value<T>(body: impl FnOnce() -> Result<T, Error>) -> Result<T, Error> {
+    catch_unwind(AssertUnwindSafe(body)).unwrap_or(Err(Error::Internal))
 }
 
 /// Runs `body` and turns a panic (a library bug) into `TBASIS_ERROR_INTERNAL`.
@@ -343,28 +366,95 @@ pub unsafe extern "C" fn tbasis_generate(
         let views = mesh_views(&mesh_desc)?;
         let mut out = output_views(&output_desc, mesh_desc.vertex_count)?;
 
-        let scratch = match options_desc {
-            Some(o) if !o.scratch.is_null() => {
-                let needed = scratch_size(mesh_desc.vertex_count).ok_or(Error::SizeOverflow)?;
-                if o.scratch_size < needed {
-                    return Err(Error::ScratchTooSmall);
-                }
-                check_buffer(o.scratch, 1, o.scratch_size, 1)?;
-                let footprint = Footprint {
-                    start: o.scratch as usize,
-                    stride: 1,
-                    size: 1,
-                    count: o.scratch_size,
-                };
-                // The slice is formed only once it is known to share no byte with any other buffer.
-                check_overlaps(&views, &out, Some(footprint))?;
-                Some(core::slice::from_raw_parts_mut(o.scratch.cast::<u8>(), o.scratch_size))
-            }
-            _ => None,
-        };
+        let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
+        let scratch = caller_scratch(options_desc, needed, |footprint| {
+            check_overlaps(&views, &out, Some(footprint))
+        })?;
 
         let mut found = Report::default();
         let result = generate_into(&views, &opts, &mut out, scratch, &mut found);
+        if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
+            ptr::write_unaligned(report, tbasis_report::from(found));
+        }
+        result
+    })
+}
+
+/// The caller's scratch bytes from `options`, once they are large enough (`needed`), span valid
+/// addresses and pass `check_overlaps`; `None` when the caller brings none.
+///
+/// # Safety
+/// A non-NULL `options.scratch` must be writable for `options.scratch_size` bytes for the call.
+unsafe fn caller_scratch<'a>(
+    options: Option<tbasis_options>,
+    needed: usize,
+    check_overlaps: impl FnOnce(Footprint) -> Result<(), Error>,
+) -> Result<Option<&'a mut [u8]>, Error> {
+    let Some(o) = options.filter(|o| !o.scratch.is_null()) else {
+        return Ok(None);
+    };
+    if o.scratch_size < needed {
+        return Err(Error::ScratchTooSmall);
+    }
+    check_buffer(o.scratch, 1, o.scratch_size, 1)?;
+    check_overlaps(Footprint {
+        start: o.scratch as usize,
+        stride: 1,
+        size: 1,
+        count: o.scratch_size,
+    })?;
+    // The slice is formed only once it is known to share no byte with any other buffer.
+    Ok(Some(core::slice::from_raw_parts_mut(
+        o.scratch.cast::<u8>(),
+        o.scratch_size,
+    )))
+}
+
+/// Computes a unit tangent and handedness for every triangle corner: `tangents` receives
+/// `float x, y, z, w` for corner `k` of triangle `t` at element `3t + k`, that is one element per
+/// index (`index_count` elements), or per vertex when `mesh->indices` is NULL (`vertex_count`).
+///
+/// With `TBASIS_METHOD_MIKKTSPACE` each corner gets exactly mikktspace.c's frame for it. The
+/// per-vertex methods give each corner its vertex's frame, except at a mirror fold (a vertex used
+/// by triangles of both UV orientations), where each corner gets the frame of its own side.
+///
+/// - `mesh`, `options`, `report`: as for `tbasis_generate` (`options` and `report` may be NULL).
+/// - `tangents`: `(corner_count - 1) * tangents_stride + 16` bytes, written only on `TBASIS_OK`;
+///   it must share no byte with an input or the scratch.
+/// - `tangents_stride`: bytes from one corner's tangent to the next; at least 16.
+///
+/// Returns the statuses of `tbasis_generate`; on any error no output byte has been written.
+///
+/// # Safety
+/// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_generate_corners(
+    mesh: *const tbasis_mesh,
+    options: *const tbasis_options,
+    tangents: *mut c_void,
+    tangents_stride: usize,
+    report: *mut tbasis_report,
+) -> tbasis_status {
+    boundary(|| {
+        if mesh.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let mesh_desc = ptr::read_unaligned(mesh);
+        let options_desc = if options.is_null() {
+            None
+        } else {
+            Some(ptr::read_unaligned(options))
+        };
+        let opts = options_of(options_desc)?;
+        let views = mesh_views(&mesh_desc)?;
+        let mut out = write_view(tangents, tangents_stride, views.corner_count())?;
+        let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
+        let scratch = caller_scratch(options_desc, needed, |footprint| {
+            check_written(&views, &[Some(out.footprint()), Some(footprint)])
+        })?;
+
+        let mut found = Report::default();
+        let result = generate_corners_into(&views, &opts, &mut out, scratch, &mut found);
         if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
             ptr::write_unaligned(report, tbasis_report::from(found));
         }
@@ -411,20 +501,30 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
     })
 }
 
-/// Bytes of `options->scratch` a `tbasis_generate` call on `mesh` needs:
-/// `vertex_count * 29 + 3`, or 0 when `vertex_count` is 0. Returns `SIZE_MAX` when `mesh` is NULL
-/// or the size overflows. `options` may be NULL.
+/// Bytes of `options->scratch` a `tbasis_generate` or `tbasis_generate_corners` call on `mesh`
+/// with `options` needs: `vertex_count * 29 + 3` for the per-vertex methods and
+/// `MIKKTSPACE_WORDS * 4 + 3` for `TBASIS_METHOD_MIKKTSPACE` (see the README), 0 when the mesh is
+/// empty. Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
+/// `options` may be NULL (the defaults).
 ///
 /// # Safety
 /// `mesh` must be NULL or point to a readable `tbasis_mesh`.
 #[no_mangle]
 pub unsafe extern "C" fn tbasis_scratch_size(mesh: *const tbasis_mesh, options: *const tbasis_options) -> usize {
-    let _ = options;
-    if mesh.is_null() {
-        return usize::MAX;
-    }
-    let mesh = ptr::read_unaligned(mesh);
-    scratch_size(mesh.vertex_count).unwrap_or(usize::MAX)
+    let size = boundary_value(|| {
+        if mesh.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let options = options_of((!options.is_null()).then(|| ptr::read_unaligned(options)))?;
+        let mesh = ptr::read_unaligned(mesh);
+        let corner_count = if mesh.indices.is_null() {
+            mesh.vertex_count
+        } else {
+            mesh.index_count
+        };
+        scratch_bytes(options.method, mesh.vertex_count, corner_count).ok_or(Error::SizeOverflow)
+    });
+    size.unwrap_or(usize::MAX)
 }
 
 /// A static, NUL-terminated English description of `status`; unknown values get one too.

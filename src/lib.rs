@@ -26,6 +26,7 @@ mod generate;
 mod inherit;
 mod legacy;
 mod mesh;
+mod mikktspace;
 mod options;
 mod parallel;
 mod report;
@@ -36,8 +37,9 @@ mod status;
 mod strided;
 mod transform;
 mod validate;
+mod vertex_corners;
 
-pub use generate::{generate, generate_into, scratch_size};
+pub use generate::{generate, generate_corners, generate_corners_into, generate_into, scratch_size, scratch_size_for};
 pub use mesh::{Indices, Mesh, Output};
 pub use options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
 pub use report::Report;

@@ -18,15 +18,30 @@ pub enum Indices<'a> {
 impl<'a> Indices<'a> {
     /// Number of triangles, given the vertex count (used when unindexed).
     pub fn triangle_count(&self, vertex_count: usize) -> Result<usize, Error> {
-        let index_count = match self {
-            Indices::None => vertex_count,
-            Indices::U16(view) => view.len(),
-            Indices::U32(view) => view.len(),
-        };
+        let index_count = self.corner_count(vertex_count);
         if index_count % 3 != 0 {
             return Err(Error::InvalidIndexCount);
         }
         Ok(index_count / 3)
+    }
+
+    /// Number of corners: the index count, or `vertex_count` when unindexed.
+    pub fn corner_count(&self, vertex_count: usize) -> usize {
+        match self {
+            Indices::None => vertex_count,
+            Indices::U16(view) => view.len(),
+            Indices::U32(view) => view.len(),
+        }
+    }
+
+    /// The vertex of corner `c` (callers keep `c` below `corner_count`).
+    #[inline(always)]
+    pub fn corner(&self, c: usize) -> usize {
+        match self {
+            Indices::None => c,
+            Indices::U16(view) => view.get(c) as usize,
+            Indices::U32(view) => view.get(c) as usize,
+        }
     }
 
     /// The vertices of triangle `t` (callers keep `t` below `triangle_count`).
@@ -95,6 +110,12 @@ impl<'a> Mesh<'a> {
     /// Number of vertices (the positions' length; the other attributes must match it).
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
+    }
+
+    /// Number of triangle corners: the index count, or the vertex count when unindexed. The
+    /// per-corner output has this many elements, corner `3t + k` being corner `k` of triangle `t`.
+    pub fn corner_count(&self) -> usize {
+        self.indices.corner_count(self.vertex_count())
     }
 }
 

@@ -16,6 +16,9 @@ pub enum Method {
     Area = 3,
     /// Unit face tangents with equal weights (per-face averaging).
     Uniform = 4,
+    /// Exactly what mikktspace.c's `genTangSpaceDefault` gives, float for float, per corner: the
+    /// tangents almost every normal map is baked against. Its default policy is `Legacy`.
+    Mikktspace = 5,
 }
 
 impl Method {
@@ -32,6 +35,7 @@ impl Method {
             2 => Ok(Method::Angle),
             3 => Ok(Method::Area),
             4 => Ok(Method::Uniform),
+            5 => Ok(Method::Mikktspace),
             _ => Err(Error::UnknownMethod),
         }
     }
@@ -57,10 +61,19 @@ impl DegeneratePolicy {
     /// The policy used when the caller asks for the default (`0` in C).
     pub const DEFAULT: DegeneratePolicy = DegeneratePolicy::Inherit;
 
-    /// The policy with this C value; `0` is the default.
-    pub fn from_code(code: u32) -> Result<DegeneratePolicy, Error> {
+    /// The policy `0` stands for with `method`: `Legacy` for [`Method::Mikktspace`] (exactly
+    /// mikktspace.c), [`DegeneratePolicy::DEFAULT`] for the others.
+    pub fn default_for(method: Method) -> DegeneratePolicy {
+        match method {
+            Method::Mikktspace => DegeneratePolicy::Legacy,
+            _ => DegeneratePolicy::DEFAULT,
+        }
+    }
+
+    /// The policy with this C value for `method`; `0` is the method's default.
+    pub fn from_code(code: u32, method: Method) -> Result<DegeneratePolicy, Error> {
         match code {
-            0 => Ok(DegeneratePolicy::DEFAULT),
+            0 => Ok(DegeneratePolicy::default_for(method)),
             1 => Ok(DegeneratePolicy::Legacy),
             2 => Ok(DegeneratePolicy::Skip),
             3 => Ok(DegeneratePolicy::Inherit),
@@ -123,10 +136,19 @@ impl Options {
         }
     }
 
+    /// mikktspace.c's tangents, bit for bit: method MIKKTSPACE with policy LEGACY.
+    pub fn mikktspace() -> Self {
+        Options {
+            method: Method::Mikktspace,
+            degenerate_policy: DegeneratePolicy::Legacy,
+            ..Options::default()
+        }
+    }
+
     /// Options from their C values (0 meaning each default), validated.
     pub fn from_codes(method: u32, policy: u32, flags: u32, threshold: f32, threads: u32) -> Result<Self, Error> {
         let method = Method::from_code(method)?;
-        let degenerate_policy = DegeneratePolicy::from_code(policy)?;
+        let degenerate_policy = DegeneratePolicy::from_code(policy, method)?;
         if flags & !KNOWN_FLAGS != 0 {
             return Err(Error::UnknownFlags);
         }

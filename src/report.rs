@@ -20,6 +20,13 @@ pub struct Report {
     /// Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (it was
     /// normalized, or, when it has no direction, ignored). Not counted by policy LEGACY.
     pub abnormal_normals: usize,
+    /// Corners where method MIKKTSPACE with policy SKIP or INHERIT replaced what mikktspace.c
+    /// gives (a non-finite, zero or non-unit tangent, or one not perpendicular to the normal) with
+    /// a finite unit tangent perpendicular to the normal.
+    pub repaired_corners: usize,
+    /// Method MIKKTSPACE: vertices whose corners do not all get the same bits (the vertices a
+    /// seam split duplicates). The per-vertex output gives each such vertex its first corner's.
+    pub split_vertices: usize,
 }
 
 impl Default for Report {
@@ -32,6 +39,8 @@ impl Default for Report {
             unreferenced_vertices: 0,
             inherited_vertices: 0,
             abnormal_normals: 0,
+            repaired_corners: 0,
+            split_vertices: 0,
         }
     }
 }
@@ -46,6 +55,8 @@ impl Report {
         self.unreferenced_vertices += other.unreferenced_vertices;
         self.inherited_vertices += other.inherited_vertices;
         self.abnormal_normals += other.abnormal_normals;
+        self.repaired_corners += other.repaired_corners;
+        self.split_vertices += other.split_vertices;
     }
 
     /// Records triangle `t` as degenerate.

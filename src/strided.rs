@@ -320,6 +320,8 @@ unsafe impl<T: Element> Send for StridedMut<'_, T> {}
 pub unsafe trait Pod: Copy {}
 // SAFETY: three f32 + one f32 + three f32, repr(C), no padding.
 unsafe impl Pod for crate::scratch::VertexSums {}
+// SAFETY: a primitive integer.
+unsafe impl Pod for u32 {}
 
 /// The first `count` elements of type `T` that fit in `bytes` after its first `T`-aligned address,
 /// and the bytes after them; `None` when they do not fit.

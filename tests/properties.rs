@@ -455,6 +455,8 @@ fn unwritten_report() -> Report {
         unreferenced_vertices: 12_345,
         inherited_vertices: 12_345,
         abnormal_normals: 12_345,
+        repaired_corners: 12_345,
+        split_vertices: 12_345,
     }
 }
 

@@ -86,6 +86,7 @@ impl Expected {
             unreferenced_vertices: self.unreferenced,
             inherited_vertices,
             abnormal_normals: self.abnormal,
+            ..Report::default()
         }
     }
 }
@@ -635,6 +636,8 @@ fn empty_mesh() {
                 unreferenced_vertices: 7,
                 inherited_vertices: 7,
                 abnormal_normals: 7,
+                repaired_corners: 7,
+                split_vertices: 7,
             };
             let result = {
                 let mut output = Output {
