@@ -9,6 +9,7 @@
 
 long checks_passed = 0;
 long checks_failed = 0;
+int provoked[LAST_STATUS + 1];
 
 int check(int ok, const char *format, ...)
 {
@@ -25,6 +26,14 @@ int check(int ok, const char *format, ...)
         fflush(stdout);
     }
     return ok;
+}
+
+int expect_status(const char *what, tbasis_status got, tbasis_status want)
+{
+    if (got == want && want <= LAST_STATUS)
+        provoked[want] = 1;
+    return check(got == want, "%s: status %u (%s), expected %u (%s)", what, (unsigned)got, tbasis_status_string(got),
+                 (unsigned)want, tbasis_status_string(want));
 }
 
 /* Varies with the position so a shifted or partial write cannot reproduce it. */
@@ -137,25 +146,27 @@ static double dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-const char *frame_problem(const float n[3], const float t[4], const float b[3])
+/* The tangent part of frame_problem; sets *usable_normal and, when it is set, unit_normal. */
+static const char *tangent_check(const float n[3], const float t[4], int *usable_normal, double unit_normal[3])
 {
     const double tolerance = 1e-5;
-    double tangent[3], bitangent[3], unit_normal[3], largest = 0.0, length;
-    int k, usable_normal = 1;
+    double tangent[3], largest = 0.0, length;
+    int k;
+    *usable_normal = 1;
     for (k = 0; k < 3; k++) {
         tangent[k] = t[k];
-        bitangent[k] = b[k];
-        usable_normal = usable_normal && isfinite(n[k]);
+        *usable_normal = *usable_normal && isfinite(n[k]);
         if (fabs(n[k]) > largest)
             largest = fabs(n[k]);
     }
+    *usable_normal = *usable_normal && largest > 0.0;
     if (!(isfinite(tangent[0]) && isfinite(tangent[1]) && isfinite(tangent[2])))
         return "tangent is not finite";
     if (!(t[3] == 1.0f || t[3] == -1.0f))
         return "w is not exactly +1 or -1";
     if (!(fabs(sqrt(dot3(tangent, tangent)) - 1.0) <= tolerance))
         return "tangent is not unit length";
-    if (usable_normal && largest > 0.0) {
+    if (*usable_normal) {
         /* Scaled by the largest component first, so tiny or huge normals normalize too. */
         double scaled[3];
         for (k = 0; k < 3; k++)
@@ -165,7 +176,30 @@ const char *frame_problem(const float n[3], const float t[4], const float b[3])
             unit_normal[k] = scaled[k] / length;
         if (!(fabs(dot3(tangent, unit_normal)) <= tolerance))
             return "tangent is not orthogonal to the normal";
+    }
+    return NULL;
+}
+
+const char *tangent_problem(const float n[3], const float t[4])
+{
+    double unit_normal[3];
+    int usable_normal;
+    return tangent_check(n, t, &usable_normal, unit_normal);
+}
+
+const char *frame_problem(const float n[3], const float t[4], const float b[3])
+{
+    const double tolerance = 1e-5;
+    double tangent[3], bitangent[3], unit_normal[3];
+    int k, usable_normal;
+    const char *problem = tangent_check(n, t, &usable_normal, unit_normal);
+    if (problem != NULL)
+        return problem;
+    if (usable_normal)
         return bitangent_problem(unit_normal, t, b, tolerance);
+    for (k = 0; k < 3; k++) {
+        tangent[k] = t[k];
+        bitangent[k] = b[k];
     }
     if (!(fabs(sqrt(dot3(bitangent, bitangent)) - 1.0) <= tolerance))
         return "bitangent is not unit length (unusable normal)";

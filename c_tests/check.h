@@ -4,6 +4,8 @@
 
 #include <stddef.h>
 
+#include "tbasis.h"
+
 extern long checks_passed;
 extern long checks_failed;
 
@@ -13,6 +15,15 @@ int check(int ok, const char *format, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+
+/* The highest status value the header defines. */
+#define LAST_STATUS TBASIS_ERROR_INVALID_FRAME
+
+/* Which statuses some check has seen returned on purpose (main checks that each error was). */
+extern int provoked[LAST_STATUS + 1];
+
+/* One check: a call returned `want`; records it in `provoked`. Returns whether it did. */
+int expect_status(const char *what, tbasis_status got, tbasis_status want);
 
 /* A byte pattern no computation produces by accident, and whether a buffer still holds it. */
 void sentinel_fill(void *buffer, size_t size);
@@ -48,5 +59,8 @@ const char *bitangent_problem(const double n[3], const float t[4], const float b
    exactly +1 or -1, orthogonal to the normalized normal, and b = w * cross(n_unit, t); without a
    usable normal, b must still be a unit vector orthogonal to t. Else what is wrong. */
 const char *frame_problem(const float n[3], const float t[4], const float b[3]);
+
+/* frame_problem for a tangent alone (no bitangent written). */
+const char *tangent_problem(const float n[3], const float t[4]);
 
 #endif

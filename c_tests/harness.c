@@ -4,13 +4,16 @@
  *   harness [case-file [max-vertices]]
  *
  * Checks LEGACY results bit for bit against the port of the original listing (listing.c) on
- * generated meshes in every index form and layout, provokes every status code and checks that a
- * failing call writes nothing, and, given the case file the Rust tests write, runs the stability
- * suite through the C ABI, skipping cases above max-vertices when given (for slow memory checkers).
+ * generated meshes in every index form and layout, the per-corner output against the per-vertex one
+ * (corners.c), provokes every status code and checks that a failing call writes nothing, and, given
+ * the case file the Rust tests write, runs the stability suite through the C ABI, skipping cases
+ * above max-vertices when given (for slow memory checkers).
  * Prints one line per failed check, then "N passed, M failed".
  */
 #include "cases.h"
 #include "check.h"
+#include "corners.h"
+#include "fixture.h"
 #include "listing.h"
 #include "meshes.h"
 #include "tbasis.h"
@@ -149,20 +152,6 @@ static void check_only_outputs_written(const char *what, const interleaved *v, c
  * Shared call helpers
  */
 
-/* The highest status value the header defines. */
-#define LAST_STATUS TBASIS_ERROR_INVALID_FRAME
-
-/* Which statuses some check has seen returned on purpose. */
-static int provoked[LAST_STATUS + 1];
-
-static int expect_status(const char *what, tbasis_status got, tbasis_status want)
-{
-    if (got == want && want <= LAST_STATUS)
-        provoked[want] = 1;
-    return check(got == want, "%s: status %u (%s), expected %u (%s)", what, (unsigned)got, tbasis_status_string(got),
-                 (unsigned)want, tbasis_status_string(want));
-}
-
 static tbasis_options policy_options(uint32_t policy)
 {
     tbasis_options o;
@@ -170,36 +159,6 @@ static tbasis_options policy_options(uint32_t policy)
     o.method = TBASIS_METHOD_LENGYEL;
     o.degenerate_policy = policy;
     return o;
-}
-
-static const char *index_name(uint32_t index_type)
-{
-    return index_type == TBASIS_INDEX_U16 ? "u16" : index_type == TBASIS_INDEX_U32 ? "u32" : "unindexed";
-}
-
-static const void *indices_of(const test_mesh *m, uint32_t index_type)
-{
-    return index_type == TBASIS_INDEX_U16 ? (const void *)m->indices16
-           : index_type == TBASIS_INDEX_U32 ? (const void *)m->indices32
-                                            : NULL;
-}
-
-/* The packed description of a test mesh; index_type 0: unindexed. */
-static tbasis_mesh describe(const test_mesh *m, uint32_t index_type)
-{
-    tbasis_mesh d;
-    memset(&d, 0, sizeof d);
-    d.vertex_count = (size_t)m->vertex_count;
-    d.positions = m->positions;
-    d.positions_stride = 12;
-    d.normals = m->normals;
-    d.normals_stride = 12;
-    d.texcoords = m->texcoords;
-    d.texcoords_stride = 8;
-    d.indices = indices_of(m, index_type);
-    d.index_count = d.indices ? (size_t)(3 * m->triangle_count) : 0;
-    d.index_type = index_type;
-    return d;
 }
 
 static long run_listing(const test_mesh *m, uint32_t index_type, float *tangents)
@@ -316,7 +275,7 @@ static void test_legacy_interleaved(const char *name, const test_mesh *m, uint32
     before = malloc(v.size);
     if (check(before != NULL, "%s: out of memory", what)) {
         memcpy(before, v.allocation, v.size);
-        desc = interleaved_mesh(&v, 1, indices_of(m, index_type), describe(m, index_type).index_count, index_type);
+        desc = interleaved_mesh(&v, 1, mesh_indices(m, index_type), mesh_description(m, index_type).index_count, index_type);
         output = interleaved_output(&v);
         if (expect_status(what, tbasis_generate(&desc, &options, &output, NULL), TBASIS_OK)) {
             gather(&v, VERTEX_LAYOUT.tangent, 4, tangents);
@@ -338,7 +297,7 @@ static void test_legacy_flip_v(const char *name, const test_mesh *m, const float
     char what[256];
     size_t n = (size_t)m->vertex_count, i;
     float *tangents = calloc(4 * n + 1, sizeof(float));
-    tbasis_mesh desc = describe(m, TBASIS_INDEX_U32);
+    tbasis_mesh desc = mesh_description(m, TBASIS_INDEX_U32);
     tbasis_options options = policy_options(TBASIS_DEGENERATE_LEGACY);
     tbasis_output output;
 
@@ -374,14 +333,14 @@ static void test_legacy_form(const test_mesh *m, uint32_t index_type, int expect
     float *reference = calloc(4 * n + 1, sizeof(float));
     float *tangents = calloc(4 * n + 1, sizeof(float));
     float *bitangents = calloc(3 * n + 1, sizeof(float));
-    tbasis_mesh desc = describe(m, index_type);
+    tbasis_mesh desc = mesh_description(m, index_type);
     tbasis_options options = policy_options(TBASIS_DEGENERATE_LEGACY);
     tbasis_output output;
     tbasis_report report;
     guarded out;
     long zero_determinants;
 
-    snprintf(name, sizeof name, "%s (%s, %ld vertices)", m->name, index_name(index_type), m->vertex_count);
+    snprintf(name, sizeof name, "%s (%s, %ld vertices)", m->name, index_type_name(index_type), m->vertex_count);
     memset(&out, 0, sizeof out);
     if (!check(reference && tangents && bitangents && guarded_alloc(&out, 16 * n) == 0, "%s: out of memory", name))
         goto done;
@@ -493,7 +452,7 @@ static void test_degenerate_triangles(const test_mesh *grid)
     memcpy(m.texcoords + 2 * (3 * first + 2), m.texcoords + 2 * (3 * first), 2 * sizeof(float));
     memcpy(m.texcoords + 2 * (3 * second + 2), m.texcoords + 2 * (3 * second), 2 * sizeof(float));
     n = (size_t)m.vertex_count;
-    desc = describe(&m, 0);
+    desc = mesh_description(&m, 0);
     reference = calloc(4 * n + 1, sizeof(float));
     if (!check(reference && guarded_alloc(&tangents, 16 * n) == 0 && guarded_alloc(&bitangents, 12 * n) == 0,
                "degenerate triangles: out of memory"))
@@ -550,7 +509,7 @@ static void test_scratch(const test_mesh *m)
 {
     size_t n = (size_t)m->vertex_count, needed, offset;
     const uint32_t policies[] = {TBASIS_DEGENERATE_LEGACY, TBASIS_DEGENERATE_INHERIT};
-    tbasis_mesh desc = describe(m, TBASIS_INDEX_U32), huge = desc, empty = desc;
+    tbasis_mesh desc = mesh_description(m, TBASIS_INDEX_U32), huge = desc, empty = desc;
     tbasis_options options;
     tbasis_output output;
     unsigned char *scratch;
@@ -655,54 +614,6 @@ static void test_out_of_memory(void)
 /* ---------------------------------------------------------------------------------------------
  * Every error status, and nothing written when one is returned
  */
-
-enum { FIX_BUFFER = 2048 };
-
-/* Every byte a fixture call may legitimately read or write, compared whole after each error. */
-typedef struct arena {
-    unsigned char positions[FIX_BUFFER], normals[FIX_BUFFER], texcoords[FIX_BUFFER], indices[FIX_BUFFER];
-    unsigned char tangents[FIX_BUFFER], bitangents[FIX_BUFFER], scratch[FIX_BUFFER];
-} arena;
-
-typedef struct fixture {
-    arena memory, before;
-    const test_mesh *source;
-    tbasis_mesh mesh;
-    tbasis_options options;
-    tbasis_output output;
-    const tbasis_mesh *mesh_arg;
-    const tbasis_output *output_arg;
-} fixture;
-
-/* A valid call: packed inputs with u16 indices, tangents and bitangents behind guard bytes. */
-static void fixture_reset(fixture *f)
-{
-    const test_mesh *m = f->source;
-    sentinel_fill(&f->memory, sizeof f->memory);
-    memcpy(f->memory.positions, m->positions, 12 * (size_t)m->vertex_count);
-    memcpy(f->memory.normals, m->normals, 12 * (size_t)m->vertex_count);
-    memcpy(f->memory.texcoords, m->texcoords, 8 * (size_t)m->vertex_count);
-    memcpy(f->memory.indices, m->indices16, 6 * (size_t)m->triangle_count);
-    f->mesh = describe(m, TBASIS_INDEX_U16);
-    f->mesh.positions = f->memory.positions;
-    f->mesh.normals = f->memory.normals;
-    f->mesh.texcoords = f->memory.texcoords;
-    f->mesh.indices = f->memory.indices;
-    f->options = policy_options(TBASIS_DEGENERATE_INHERIT);
-    memset(&f->output, 0, sizeof f->output);
-    f->output.tangents = f->memory.tangents + GUARD_BYTES;
-    f->output.tangents_stride = 16;
-    f->output.bitangents = f->memory.bitangents + GUARD_BYTES;
-    f->output.bitangents_stride = 12;
-    f->mesh_arg = &f->mesh;
-    f->output_arg = &f->output;
-}
-
-static void fixture_use_u32(fixture *f)
-{
-    memcpy(f->memory.indices, f->source->indices32, 12 * (size_t)f->source->triangle_count);
-    f->mesh.index_type = TBASIS_INDEX_U32;
-}
 
 /* Runs the fixture's call; on an error every byte of the arena must be as before. */
 static void expect(fixture *f, const char *what, tbasis_status want)
@@ -825,7 +736,7 @@ static void test_statuses(fixture *f)
     expect(f, "index_type 3", TBASIS_ERROR_INVALID_INDEX_TYPE);
 
     fixture_reset(f);
-    f->options.method = TBASIS_METHOD_UNIFORM + 1;
+    f->options.method = TBASIS_METHOD_MIKKTSPACE + 1;
     expect(f, "method one past the last", TBASIS_ERROR_UNKNOWN_METHOD);
     fixture_reset(f);
     f->options.method = UINT32_MAX;
@@ -1195,8 +1106,9 @@ int main(int argc, char **argv)
     /* The listing writes NaN for the degenerate grid's collinear band and unused vertex, and for
        the spheres' pole vertices that only zero-area triangles touch. */
     const int nonfinite[MESHES] = {0, 1, 0, 1, 1};
+    test_mesh corner_grids[2];
     fixture *f = calloc(1, sizeof *f);
-    int made[MESHES], k, small_made;
+    int made[MESHES], k, small_made, corner_grids_made;
     tbasis_status s;
 
     memset(meshes, 0, sizeof meshes);
@@ -1206,19 +1118,31 @@ int main(int argc, char **argv)
     made[3] = mesh_uv_sphere(&meshes[3], 72, 40, 0) == 0;
     made[4] = mesh_uv_sphere(&meshes[4], 72, 40, 1) == 0;
     small_made = mesh_grid(&small, 5, 4, 0) == 0;
+    corner_grids_made = mesh_grid(&corner_grids[0], 16, 12, 0) == 0;
+    corner_grids_made = mesh_grid(&corner_grids[1], 12, 9, 1) == 0 && corner_grids_made;
 
     test_version_and_strings();
     for (k = 0; k < MESHES; k++)
         if (check(made[k], "mesh %d: out of memory", k))
             test_legacy(&meshes[k], nonfinite[k]);
+    /* Per corner: every method on small grids with a mirror fold (the degenerate one has collapsed
+       triangles at the fold), and the defaults and LEGACY's inf/NaN on the pinched sphere. */
+    if (check(corner_grids_made, "corner grids: out of memory")) {
+        test_corners(&corner_grids[0], 1, 1);
+        test_corners(&corner_grids[1], 0, 1);
+    }
+    if (made[4])
+        test_corners(&meshes[4], 0, 0);
     if (made[0]) {
         test_degenerate_triangles(&meshes[0]);
         test_scratch(&meshes[0]);
+        test_scratch_sizes(&meshes[0]);
     }
     test_out_of_memory();
     if (check(f != NULL && small_made, "status fixture: out of memory")) {
         f->source = &small;
         test_statuses(f);
+        test_corner_statuses(&small);
     }
     test_transforms();
     /* Every error but INTERNAL, which only a bug in the library returns. */
@@ -1241,6 +1165,8 @@ int main(int argc, char **argv)
             mesh_free(&meshes[k]);
     if (small_made)
         mesh_free(&small);
+    mesh_free(&corner_grids[0]);
+    mesh_free(&corner_grids[1]);
     free(f);
     return checks_failed > 0 ? 1 : 0;
 }

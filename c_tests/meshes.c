@@ -189,3 +189,32 @@ void mesh_free(test_mesh *m)
     free(m->indices16);
     memset(m, 0, sizeof *m);
 }
+
+tbasis_mesh mesh_description(const test_mesh *m, uint32_t index_type)
+{
+    tbasis_mesh d;
+    memset(&d, 0, sizeof d);
+    d.vertex_count = (size_t)m->vertex_count;
+    d.positions = m->positions;
+    d.positions_stride = 12;
+    d.normals = m->normals;
+    d.normals_stride = 12;
+    d.texcoords = m->texcoords;
+    d.texcoords_stride = 8;
+    d.indices = mesh_indices(m, index_type);
+    d.index_count = d.indices ? (size_t)(3 * m->triangle_count) : 0;
+    d.index_type = index_type;
+    return d;
+}
+
+const void *mesh_indices(const test_mesh *m, uint32_t index_type)
+{
+    return index_type == TBASIS_INDEX_U16 ? (const void *)m->indices16
+           : index_type == TBASIS_INDEX_U32 ? (const void *)m->indices32
+                                            : NULL;
+}
+
+const char *index_type_name(uint32_t index_type)
+{
+    return index_type == TBASIS_INDEX_U16 ? "u16" : index_type == TBASIS_INDEX_U32 ? "u32" : "unindexed";
+}

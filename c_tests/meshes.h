@@ -4,6 +4,8 @@
 
 #include <stdint.h>
 
+#include "tbasis.h"
+
 typedef struct test_mesh {
     char name[64];
     long vertex_count;
@@ -33,5 +35,15 @@ int mesh_uv_sphere(test_mesh *m, int slices, int stacks, int pinched);
 int mesh_unindexed(test_mesh *out, const test_mesh *in);
 
 void mesh_free(test_mesh *m);
+
+/* The packed description of a test mesh; index_type TBASIS_INDEX_U16, TBASIS_INDEX_U32 or 0
+   (unindexed). */
+tbasis_mesh mesh_description(const test_mesh *m, uint32_t index_type);
+
+/* The mesh's index array of that type; NULL for 0 (unindexed). */
+const void *mesh_indices(const test_mesh *m, uint32_t index_type);
+
+/* "u16", "u32" or "unindexed". */
+const char *index_type_name(uint32_t index_type);
 
 #endif

@@ -1,5 +1,5 @@
 //! Speed of every method and policy against the C port of the listing and against the machine's
-//! read bandwidth, in one run.
+//! read bandwidth, in one run; and of method MIKKTSPACE against mikktspace.c itself.
 //!
 //! ```text
 //! cargo run --release --example bench
@@ -16,6 +16,13 @@
 //! linked by `build.rs`) and as a share of the bandwidth limit: the time the bytes a per-vertex
 //! method must touch take at the read bandwidth measured at the start of the run.
 //!
+//! Method MIKKTSPACE runs per corner (`generate_corners_into`), against mikktspace.c through the
+//! wrapper the tests use (`tests/common/mikktspace_reference.rs`, reading the mesh through its
+//! index buffer, V up as the C port gets it). Before any timing, each scene's corners from both,
+//! with one and two threads, must agree bit for bit (a NaN matching any NaN), or the run stops.
+//! mikktspace.c takes seconds per call on the large scenes: it is timed in only
+//! [`SLOW_SAMPLES`] of the rounds.
+//!
 //! Prints the tables and writes `docs/bench.md`.
 
 #[path = "../c_tests/listing.rs"]
@@ -25,6 +32,9 @@ mod listing;
 mod load;
 #[path = "common/machine.rs"]
 mod machine;
+#[allow(dead_code)]
+#[path = "../tests/common/mikktspace_reference.rs"]
+mod mikktspace_reference;
 #[allow(dead_code)]
 #[path = "../tests/common/scenes.rs"]
 mod scenes;
@@ -37,7 +47,11 @@ use std::time::{Duration, Instant};
 
 use listing::listing_tangents;
 use machine::{load_average, machine};
-use tbasis::{generate_into, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
+use mikktspace_reference::Geometry;
+use tbasis::{
+    generate_corners_into, generate_into, scratch_size_for, DegeneratePolicy, Error, Indices, Mesh, Method, Options,
+    Output, Report, Strided, StridedMut,
+};
 
 /// The command, as the report shows it.
 const COMMAND: &str = "cargo run --release --example bench";
@@ -73,6 +87,10 @@ const CUBE_CALLS: usize = 10_000;
 /// Samples per configuration on the cube.
 const CUBE_ROUNDS: usize = 15;
 
+/// Samples of a slow configuration (mikktspace.c: about 3 s per call on the torus), spread over
+/// the rounds; the others run in every round.
+const SLOW_SAMPLES: usize = 3;
+
 /// One array the library reads: a primitive of the asset, or the whole of a generated scene.
 struct Part {
     positions: Vec<[f32; 3]>,
@@ -88,6 +106,21 @@ struct Part {
 impl Part {
     fn vertices(&self) -> usize {
         self.positions.len()
+    }
+
+    /// Triangle corners: one per index.
+    fn corners(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// The part as the library reads it.
+    fn mesh(&self) -> Mesh<'_> {
+        Mesh {
+            positions: Strided::from_slice(&self.positions),
+            normals: Strided::from_slice(&self.normals),
+            texcoords: Some(Strided::from_slice(&self.texcoords)),
+            indices: Indices::U32(Strided::from_slice(&self.indices)),
+        }
     }
 
     /// Bytes a per-vertex method must touch at least once: the inputs and the output, once each,
@@ -258,10 +291,53 @@ fn cube() -> Scene {
 #[derive(Clone, Copy)]
 enum Generator {
     Listing,
-    Library(Options),
+    Library(Call),
+    /// mikktspace.c, one frame per corner: the wrapper's callbacks read the part through its index
+    /// buffer, with the C port's V-up texture coordinates (what `flip_v` computes for glTF).
+    MikktspaceC,
+}
+
+impl Generator {
+    /// A per-vertex library call with these options, allocating its scratch.
+    fn library(options: Options) -> Self {
+        Generator::Library(Call {
+            options,
+            corners: false,
+            caller_scratch: false,
+        })
+    }
+
+    /// Seconds per call on the large scenes: sampled in [`SLOW_SAMPLES`] rounds only.
+    fn slow(&self) -> bool {
+        matches!(self, Generator::MikktspaceC)
+    }
+
+    /// Writes one frame per corner rather than per vertex.
+    fn per_corner(&self) -> bool {
+        match self {
+            Generator::Library(call) => call.corners,
+            Generator::MikktspaceC => true,
+            Generator::Listing => false,
+        }
+    }
+
+    fn threads(&self) -> usize {
+        match self {
+            Generator::Library(call) => call.options.threads.max(1) as usize,
+            Generator::Listing | Generator::MikktspaceC => 1,
+        }
+    }
+}
+
+/// One library call, as a configuration makes it.
+#[derive(Clone, Copy)]
+struct Call {
+    options: Options,
+    /// Per corner (`generate_corners_into`) rather than per vertex (`generate_into`).
+    corners: bool,
     /// With caller scratch, allocated and touched once before the timing: what a caller that
-    /// keeps its scratch between calls pays.
-    LibraryWithScratch(Options),
+    /// keeps its scratch between calls pays. Otherwise each call allocates its own.
+    caller_scratch: bool,
 }
 
 struct Config {
@@ -273,15 +349,47 @@ fn upper(value: impl std::fmt::Debug) -> String {
     format!("{value:?}").to_uppercase()
 }
 
+/// The name of method MIKKTSPACE's configuration with `threads` (and caller scratch).
+fn mikktspace_name(threads: u32, caller_scratch: bool) -> String {
+    let mut name = "MIKKTSPACE per corner".to_string();
+    if caller_scratch {
+        name.push_str(", caller scratch");
+    }
+    if threads > 1 {
+        name.push_str(&format!(", threads={threads}"));
+    }
+    name
+}
+
+/// Method MIKKTSPACE (policy LEGACY: exactly mikktspace.c) per corner.
+fn mikktspace(threads: u32, caller_scratch: bool) -> Generator {
+    Generator::Library(Call {
+        options: Options {
+            threads,
+            ..Options::mikktspace()
+        },
+        corners: true,
+        caller_scratch,
+    })
+}
+
 /// The C port first (the reference of every ratio), then every method and policy, the default,
-/// all on the calling thread, then two configurations again with two threads.
+/// all on the calling thread, then two configurations again with two threads; last method
+/// MIKKTSPACE per corner and mikktspace.c.
 fn configs() -> Vec<Config> {
     let library = |method, policy, threads| {
-        Generator::Library(Options {
+        Generator::library(Options {
             method,
             degenerate_policy: policy,
             threads,
             ..Options::default()
+        })
+    };
+    let with_scratch = |options| {
+        Generator::Library(Call {
+            options,
+            corners: false,
+            caller_scratch: true,
         })
     };
     let defaults = Options::default();
@@ -314,11 +422,11 @@ fn configs() -> Vec<Config> {
     }
     configs.push(Config {
         name: default_name.clone(),
-        generator: Generator::Library(Options { threads: 1, ..defaults }),
+        generator: Generator::library(Options { threads: 1, ..defaults }),
     });
     configs.push(Config {
         name: "LENGYEL+LEGACY, caller scratch".to_string(),
-        generator: Generator::LibraryWithScratch(Options {
+        generator: with_scratch(Options {
             method: Method::Lengyel,
             degenerate_policy: DegeneratePolicy::Legacy,
             ..defaults
@@ -326,7 +434,7 @@ fn configs() -> Vec<Config> {
     });
     configs.push(Config {
         name: format!("{default_name}, caller scratch"),
-        generator: Generator::LibraryWithScratch(defaults),
+        generator: with_scratch(defaults),
     });
     configs.push(Config {
         name: "LENGYEL+LEGACY, threads=2".to_string(),
@@ -334,10 +442,23 @@ fn configs() -> Vec<Config> {
     });
     configs.push(Config {
         name: format!("{default_name}, threads=2"),
-        generator: Generator::Library(Options { threads: 2, ..defaults }),
+        generator: Generator::library(Options { threads: 2, ..defaults }),
+    });
+    for (threads, caller_scratch) in [(1, false), (1, true), (2, false)] {
+        configs.push(Config {
+            name: mikktspace_name(threads, caller_scratch),
+            generator: mikktspace(threads, caller_scratch),
+        });
+    }
+    configs.push(Config {
+        name: MIKKTSPACE_C.to_string(),
+        generator: Generator::MikktspaceC,
     });
     configs
 }
+
+/// The name of mikktspace.c's configuration.
+const MIKKTSPACE_C: &str = "mikktspace.c per corner";
 
 /// Index of a configuration by name (the ones the summary compares).
 fn find(configs: &[Config], name: &str) -> usize {
@@ -347,14 +468,42 @@ fn find(configs: &[Config], name: &str) -> usize {
         .unwrap_or_else(|| panic!("no configuration {name}"))
 }
 
+/// Output buffers for every part of a scene: one frame per vertex, and one per corner.
+struct Outputs {
+    vertices: Vec<Vec<[f32; 4]>>,
+    corners: Vec<Vec<[f32; 4]>>,
+}
+
+impl Outputs {
+    fn of(scene: &Scene) -> Self {
+        let frames = |count: fn(&Part) -> usize| scene.parts.iter().map(|p| vec![[0.0; 4]; count(p)]).collect();
+        Outputs {
+            vertices: frames(Part::vertices),
+            corners: frames(Part::corners),
+        }
+    }
+
+    /// The buffers `generator` writes.
+    fn of_generator(&mut self, generator: Generator) -> &mut [Vec<[f32; 4]>] {
+        if generator.per_corner() {
+            &mut self.corners
+        } else {
+            &mut self.vertices
+        }
+    }
+}
+
 /// Runs `generator` on every part of `scene`, `calls` times over; returns the time of it all and
 /// how many calls the library refused (policy REJECT on a degenerate triangle).
-fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls: usize) -> (Duration, usize) {
+fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize) -> (Duration, usize) {
+    let outputs = outputs.of_generator(generator);
     let mut refused = 0;
     let mut scratch = Vec::new();
-    if let Generator::LibraryWithScratch(_) = generator {
-        let largest = scene.parts.iter().map(Part::vertices).max().unwrap_or(0);
-        scratch = vec![1u8; tbasis::scratch_size(largest).expect("scratch size")];
+    if let Generator::Library(call) = generator {
+        if call.caller_scratch {
+            let largest = scene.parts.iter().map(|p| scratch_size_for(&p.mesh(), &call.options).expect("scratch size"));
+            scratch = vec![1u8; largest.max().unwrap_or(0)];
+        }
     }
     let start = Instant::now();
     for _ in 0..calls {
@@ -372,25 +521,34 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut [Vec<[f32; 4]>], calls
                         )
                     };
                 }
-                Generator::Library(options) | Generator::LibraryWithScratch(options) => {
+                Generator::MikktspaceC => {
+                    let geometry = Geometry {
+                        positions: &part.positions,
+                        normals: &part.normals,
+                        texcoords: &part.listing_texcoords,
+                        indices: Some(&part.indices),
+                    };
+                    assert!(black_box(mikktspace_reference::generate(geometry, tangents)), "mikktspace.c failed");
+                }
+                Generator::Library(call) => {
                     let options = Options {
                         flip_v: part.flip_v,
-                        ..options
+                        ..call.options
                     };
-                    let mesh = Mesh {
-                        positions: Strided::from_slice(&part.positions),
-                        normals: Strided::from_slice(&part.normals),
-                        texcoords: Some(Strided::from_slice(&part.texcoords)),
-                        indices: Indices::U32(Strided::from_slice(&part.indices)),
+                    let mesh = part.mesh();
+                    let mut report = Report::default();
+                    let scratch = call.caller_scratch.then_some(scratch.as_mut_slice());
+                    let result = if call.corners {
+                        let mut corners = StridedMut::from_slice(tangents);
+                        generate_corners_into(&mesh, &options, &mut corners, scratch, &mut report)
+                    } else {
+                        let mut output = Output {
+                            tangents: StridedMut::from_slice(tangents),
+                            bitangents: None,
+                        };
+                        generate_into(&mesh, &options, &mut output, scratch, &mut report)
                     };
-                    let mut output = Output {
-                        tangents: StridedMut::from_slice(tangents),
-                        bitangents: None,
-                    };
-                    let with_scratch = matches!(generator, Generator::LibraryWithScratch(_));
-                    let mut report = tbasis::Report::default();
-                    let scratch = with_scratch.then_some(scratch.as_mut_slice());
-                    match black_box(generate_into(&mesh, &options, &mut output, scratch, &mut report)) {
+                    match black_box(result) {
                         Ok(()) => {}
                         Err(Error::DegenerateUv) => refused += 1,
                         Err(e) => panic!("the library refused a benchmark mesh: {e:?}"),
@@ -421,28 +579,33 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64)
 }
 
-/// Times every configuration on `scene`, round by round.
+/// Times every configuration on `scene`, round by round (a slow one in [`SLOW_SAMPLES`] of them).
 fn measure(scene: &Scene, configs: &[Config]) -> Vec<Measured> {
-    let mut outputs: Vec<Vec<[f32; 4]>> = scene.parts.iter().map(|p| vec![[0.0; 4]; p.vertices()]).collect();
+    let mut outputs = Outputs::of(scene);
     let calls = if scene.small { CUBE_CALLS } else { 1 };
-    // A first round warms caches, allocator and page tables, and sizes the rounds.
-    let warm: Vec<(Duration, usize)> = configs
+    // A first round warms caches, allocator and page tables, and sizes the rounds from the
+    // configurations that run in every round (the slow ones ran in the check before).
+    let round: f64 = configs
         .iter()
-        .map(|c| run(c.generator, scene, &mut outputs, calls))
-        .collect();
+        .filter(|c| !c.generator.slow())
+        .map(|c| run(c.generator, scene, &mut outputs, calls).0.as_secs_f64())
+        .sum();
     let rounds = if scene.small {
         CUBE_ROUNDS
     } else {
-        let round: f64 = warm.iter().map(|(t, _)| t.as_secs_f64()).sum();
         ((LARGE_SCENE_BUDGET.as_secs_f64() / round.max(1e-9)) as usize).clamp(MIN_ROUNDS, MAX_ROUNDS)
     };
+    let slow_every = rounds.div_ceil(SLOW_SAMPLES);
     let mut samples = vec![Vec::with_capacity(rounds); configs.len()];
     let mut refused = vec![0; configs.len()];
-    for _ in 0..rounds {
+    for r in 0..rounds {
         for (k, config) in configs.iter().enumerate() {
-            let (time, r) = run(config.generator, scene, &mut outputs, calls);
+            if config.generator.slow() && r % slow_every != 0 {
+                continue;
+            }
+            let (time, refusals) = run(config.generator, scene, &mut outputs, calls);
             samples[k].push(time.as_secs_f64() / calls as f64);
-            refused[k] = r / calls;
+            refused[k] = refusals / calls;
         }
     }
     samples
@@ -464,15 +627,43 @@ fn measure(scene: &Scene, configs: &[Config]) -> Vec<Measured> {
 
 /// Vertices where LENGYEL+LEGACY and the C port differ in any bit (the library promises none).
 fn legacy_mismatches(scene: &Scene) -> usize {
-    let mut mine: Vec<Vec<[f32; 4]>> = scene.parts.iter().map(|p| vec![[0.0; 4]; p.vertices()]).collect();
-    let mut theirs = mine.clone();
-    run(Generator::Library(Options::legacy()), scene, &mut mine, 1);
+    let mut mine = Outputs::of(scene);
+    let mut theirs = Outputs::of(scene);
+    run(Generator::library(Options::legacy()), scene, &mut mine, 1);
     run(Generator::Listing, scene, &mut theirs, 1);
-    mine.iter()
+    mine.vertices
+        .iter()
         .flatten()
-        .zip(theirs.iter().flatten())
+        .zip(theirs.vertices.iter().flatten())
         .filter(|(a, b)| a.map(f32::to_bits) != b.map(f32::to_bits))
         .count()
+}
+
+/// Equal bits, a NaN matching any NaN: which NaN an operation on NaN operands returns is fixed
+/// neither by C nor by Rust.
+fn same_frame(a: [f32; 4], b: [f32; 4]) -> bool {
+    (0..4).all(|k| a[k].to_bits() == b[k].to_bits() || (a[k].is_nan() && b[k].is_nan()))
+}
+
+/// Checks that method MIKKTSPACE per corner, with one and with two threads, gives mikktspace.c's
+/// bits on every corner of `scene`, as the timed calls compute them; stops the run otherwise.
+/// Returns the corners compared.
+fn check_mikktspace(scene: &Scene) -> usize {
+    let mut reference = Outputs::of(scene);
+    run(Generator::MikktspaceC, scene, &mut reference, 1);
+    for threads in [1, 2] {
+        let mut ours = Outputs::of(scene);
+        run(mikktspace(threads, false), scene, &mut ours, 1);
+        for (p, (mine, theirs)) in ours.corners.iter().zip(&reference.corners).enumerate() {
+            if let Some(c) = (0..mine.len()).find(|&c| !same_frame(mine[c], theirs[c])) {
+                panic!(
+                    "{}, part {p}, corner {c}: MIKKTSPACE with threads={threads} gives {:?}, mikktspace.c {:?}",
+                    scene.name, mine[c], theirs[c]
+                );
+            }
+        }
+    }
+    scene.parts.iter().map(Part::corners).sum()
 }
 
 /// Best read bandwidth in bytes per second with `threads` threads, each summing its share of a
@@ -504,6 +695,20 @@ struct SceneResult {
     bytes: usize,
     measured: Vec<Measured>,
     mismatches: Option<usize>,
+    /// Corners on which MIKKTSPACE and mikktspace.c were checked equal before the timing.
+    mikktspace_corners: usize,
+}
+
+impl SceneResult {
+    /// How many samples the configurations have: every round's, and the slow ones'.
+    fn samples(&self, configs: &[Config]) -> String {
+        let slow = configs.iter().position(|c| c.generator.slow());
+        let every = self.measured[0].samples;
+        match slow.map(|k| self.measured[k].samples) {
+            Some(fewer) if fewer != every => format!("{every} samples per configuration ({MIKKTSPACE_C}: {fewer})"),
+            _ => format!("{every} samples per configuration"),
+        }
+    }
 }
 
 fn ns(d: Duration) -> f64 {
@@ -518,10 +723,7 @@ fn table(result: &SceneResult, configs: &[Config], bandwidth: &Bandwidth) -> Str
          |---|---:|---:|---:|---:|---:|\n",
     );
     for (config, m) in configs.iter().zip(&result.measured) {
-        let threads = match config.generator {
-            Generator::Library(o) | Generator::LibraryWithScratch(o) => o.threads.max(1) as usize,
-            Generator::Listing => 1,
-        };
+        let threads = config.generator.threads();
         let limit = result.bytes as f64 / bandwidth.for_threads(threads);
         let name = if m.refused > 0 {
             format!(
@@ -607,6 +809,8 @@ fn main() {
         };
         let title = scene.title();
         println!("\n{title}");
+        let mikktspace_corners = check_mikktspace(&scene);
+        println!("MIKKTSPACE (threads 1 and 2) and mikktspace.c agree on all {mikktspace_corners} corners");
         let measured = measure(&scene, &configs);
         // The asset's LEGACY run reads V down with flip_v, the C port 1 - v: not comparable bits.
         let mismatches = (scene.parts.iter().all(|p| !p.flip_v)).then(|| legacy_mismatches(&scene));
@@ -617,6 +821,7 @@ fn main() {
             bytes: scene.bytes(),
             measured,
             mismatches,
+            mikktspace_corners,
         };
         print!("{}", table(&result, &configs, &bandwidth));
         match mismatches {
@@ -625,11 +830,11 @@ fn main() {
             None => {}
         }
         println!(
-            "bandwidth limit: {} bytes, {} at {:.2} GB/s; {} samples per configuration",
+            "bandwidth limit: {} bytes, {} at {:.2} GB/s; {}",
             result.bytes,
             human(Duration::from_secs_f64(result.bytes as f64 / bandwidth.one)),
             bandwidth.one / 1e9,
-            result.measured[0].samples
+            result.samples(&configs)
         );
         results.push(result);
     }
@@ -637,7 +842,8 @@ fn main() {
     let elapsed = started.elapsed();
 
     let summary = summary(&results, &configs);
-    println!("\n{summary}");
+    let against_c = mikktspace_table(&results, &configs);
+    println!("\n{against_c}\n{summary}");
     println!(
         "load average: {load_before} at the start, {load_after} at the end; {:.0} s",
         elapsed.as_secs_f64()
@@ -686,17 +892,25 @@ fn main() {
          - **spread (IQR)**: the interquartile range of the samples over their median.\n\
          - REJECT refuses a mesh with a degenerate triangle; such rows say so and time the refusal.\n\
          - The asset is one call per primitive, with `flip_v` (glTF stores V down); the C port gets \
-         V up (`1 - v`, converted before timing).\n\n",
+         V up (`1 - v`, converted before timing).\n\
+         - **MIKKTSPACE per corner**: method MIKKTSPACE with policy LEGACY (`Options::mikktspace()`, \
+         exactly mikktspace.c), one frame per triangle corner (`generate_corners_into`). \
+         **mikktspace.c per corner**: mikktspace.c itself (`mikktspace-sys`, built by `cc` at `-O3`) \
+         through `tests/common/mikktspace_reference.rs`, whose callbacks read the mesh through its \
+         index buffer with the C port's V-up coordinates; it allocates its own memory on every call. \
+         Both write into one buffer of a frame per corner allocated before the timing; their \
+         ns/vertex are still per vertex. mikktspace.c is timed in a few rounds only, spread over the \
+         run (seconds per call on the large scenes).\n\n",
     );
     for result in &results {
         writeln!(md, "## {}\n", result.title).unwrap();
         writeln!(
             md,
-            "Bandwidth limit: {} bytes, {} at {:.2} GB/s. {} samples per configuration{}.\n",
+            "Bandwidth limit: {} bytes, {} at {:.2} GB/s. {}{}.\n",
             result.bytes,
             human(Duration::from_secs_f64(result.bytes as f64 / bandwidth.one)),
             bandwidth.one / 1e9,
-            result.measured[0].samples,
+            result.samples(&configs),
             if result.vertices < 100 {
                 format!(", each the mean of a loop of {CUBE_CALLS} calls")
             } else {
@@ -712,16 +926,50 @@ fn main() {
                 writeln!(md, "\nLENGYEL+LEGACY and the C port differed on {m} vertices.").unwrap();
             }
         }
+        writeln!(
+            md,
+            "\nMIKKTSPACE (threads 1 and 2) and mikktspace.c agreed bit for bit on all {} corners, \
+             checked before the timing.",
+            result.mikktspace_corners
+        )
+        .unwrap();
         md.push('\n');
     }
     if let Some(why) = skipped {
         writeln!(md, "## {ASSET}\n\nSkipped: {why}.\n").unwrap();
     }
-    md.push_str("## Summary\n\n");
+    md.push_str("## MIKKTSPACE against mikktspace.c\n\n");
+    md.push_str(&against_c);
+    md.push_str("\n## Summary\n\n");
     md.push_str(&summary);
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/bench.md");
     fs::write(&path, md).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     println!("wrote {}", path.display());
+}
+
+/// Per scene, mikktspace.c's time and how many times as long it takes as each configuration of
+/// method MIKKTSPACE.
+fn mikktspace_table(results: &[SceneResult], configs: &[Config]) -> String {
+    let reference = find(configs, MIKKTSPACE_C);
+    let mut text = String::from(
+        "| scene | configuration | ns/vertex | per pass | mikktspace.c / this |\n|---|---|---:|---:|---:|\n",
+    );
+    for r in results {
+        let c = r.measured[reference].median;
+        for (config, m) in configs.iter().zip(&r.measured).filter(|(c, _)| c.generator.per_corner()) {
+            writeln!(
+                text,
+                "| {} | {} | {:.1} | {} | {:.1}x |",
+                r.short,
+                config.name,
+                ns(m.median) / r.vertices as f64,
+                human(m.median),
+                c.as_secs_f64() / m.median.as_secs_f64()
+            )
+            .unwrap();
+        }
+    }
+    text
 }
 
 /// The goals, each with what this run measured.
@@ -779,10 +1027,11 @@ fn summary(results: &[SceneResult], configs: &[Config]) -> String {
         }
     }
     for r in results.iter().filter(|r| r.vertices < 100) {
+        // The goal is the per-vertex call's.
         for (k, config) in configs
             .iter()
             .enumerate()
-            .filter(|(_, c)| !matches!(c.generator, Generator::Listing))
+            .filter(|(_, c)| matches!(c.generator, Generator::Library(call) if !call.corners))
         {
             let per_call = r.measured[k].median;
             writeln!(

@@ -12,11 +12,13 @@
 //!
 //! Peers: the original listing (its C port, `c_tests/listing.c`, linked by `build.rs`),
 //! meshoptimizer's `meshopt_generateTangents` (the `meshopt` crate; default and MikkTSpace-compatible
-//! modes), mikktspace.c (`mikktspace-sys`) and `bevy_mikktspace`. Every generator runs on the
-//! calling thread; the time is the median of several runs of the generating call alone.
-//! meshoptimizer and MikkTSpace write one tangent per triangle corner: each vertex takes the tangent
-//! of the first corner that references it. MikkTSpace reads the mesh as unindexed triangles, built
-//! from the indexed mesh before timing.
+//! modes), mikktspace.c (`mikktspace-sys`, through `tests/common/mikktspace_reference.rs`) and
+//! `bevy_mikktspace`. Every generator runs on the calling thread; the time is the median of several
+//! runs of the generating call alone. meshoptimizer and MikkTSpace write one tangent per triangle
+//! corner: each vertex takes the tangent of the first corner that references it, as this library's
+//! method MIKKTSPACE does in its per-vertex call, so its errors must equal mikktspace.c's exactly
+//! (the run stops otherwise). MikkTSpace reads the mesh as unindexed triangles, built from the
+//! indexed mesh before timing.
 
 #[path = "../c_tests/listing.rs"]
 mod listing;
@@ -25,6 +27,9 @@ mod listing;
 mod load;
 #[path = "common/machine.rs"]
 mod machine;
+#[allow(dead_code)]
+#[path = "../tests/common/mikktspace_reference.rs"]
+mod mikktspace_reference;
 #[allow(dead_code)]
 #[path = "../tests/common/scenes.rs"]
 mod scenes;
@@ -92,14 +97,19 @@ fn entries() -> Vec<Entry> {
         entry("tbasis ANGLE", library(Method::Angle, DegeneratePolicy::Inherit)),
         entry("tbasis AREA", library(Method::Area, DegeneratePolicy::Inherit)),
         entry("tbasis UNIFORM", library(Method::Uniform, DegeneratePolicy::Inherit)),
+        entry(MIKKTSPACE, Generator::Library(Options::mikktspace())),
         entry(&default_name, Generator::Library(defaults)),
         entry("listing.c", Generator::Listing),
         entry("meshopt", Generator::Meshopt(TangentOptions::None)),
         entry("meshopt compatible", Generator::Meshopt(TangentOptions::Compatible)),
-        entry("mikktspace.c", Generator::MikktspaceC),
+        entry(MIKKTSPACE_C, Generator::MikktspaceC),
         entry("bevy_mikktspace", Generator::BevyMikktspace),
     ]
 }
+
+/// The entry of method MIKKTSPACE, and the one whose errors it must equal.
+const MIKKTSPACE: &str = "tbasis MIKKTSPACE";
+const MIKKTSPACE_C: &str = "mikktspace.c";
 
 /// A mesh as every generator reads it. `texcoords` have V up; `library_texcoords` and `flip_v` are
 /// what the library gets (a glTF file's own V-down coordinates with `flip_v`, or the same).
@@ -128,33 +138,6 @@ impl Corners {
             normals: corners.clone().map(|k| input.normals[gather(k)]).collect(),
             texcoords: corners.map(|k| input.texcoords[gather(k)]).collect(),
         }
-    }
-}
-
-/// mikktspace.c's view of the corners; tangents go to `result`, one per corner.
-struct MikkC<'a> {
-    corners: &'a Corners,
-    result: &'a mut [[f32; 4]],
-}
-
-impl mikktspace_sys::MikkTSpaceInterface for MikkC<'_> {
-    fn get_num_faces(&self) -> usize {
-        self.corners.positions.len() / 3
-    }
-    fn get_num_vertices_of_face(&self, _face: usize) -> usize {
-        3
-    }
-    fn get_position(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.corners.positions[3 * face + vert]
-    }
-    fn get_normal(&self, face: usize, vert: usize) -> [f32; 3] {
-        self.corners.normals[3 * face + vert]
-    }
-    fn get_tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
-        self.corners.texcoords[3 * face + vert]
-    }
-    fn set_tspace_basic(&mut self, tangent: [f32; 3], sign: f32, face: usize, vert: usize) {
-        self.result[3 * face + vert] = [tangent[0], tangent[1], tangent[2], sign];
     }
 }
 
@@ -297,12 +280,15 @@ fn run(generator: Generator, input: &Input, corners: &Corners, time: bool) -> (V
         }
         Generator::MikktspaceC => {
             let mut per_corner = vec![[0.0f32; 4]; input.indices.len()];
+            // The gathered corners, unindexed, as the shared reference wrapper reads them.
+            let geometry = mikktspace_reference::Geometry {
+                positions: &corners.positions,
+                normals: &corners.normals,
+                texcoords: &corners.texcoords,
+                indices: None,
+            };
             let (_, time) = timed(timing, || {
-                let mut geometry = MikkC {
-                    corners,
-                    result: &mut per_corner,
-                };
-                assert!(mikktspace_sys::gen_tang_space_default(&mut geometry));
+                assert!(mikktspace_reference::generate(geometry, &mut per_corner));
             });
             (first_corner(input.indices, &per_corner, vertex_count), time)
         }
@@ -330,7 +316,8 @@ struct Row {
 }
 
 /// Measures every entry on `scene`; returns how many vertices of LENGYEL+LEGACY differ in any bit
-/// from listing.c (the library promises none).
+/// from listing.c (the library promises none). Stops the run when the errors of method MIKKTSPACE
+/// are not exactly mikktspace.c's.
 fn measure_scene(scene: &Scene, entries: &[Entry], rows: &mut Vec<Row>) -> usize {
     let input = Input {
         positions: &scene.positions,
@@ -365,11 +352,24 @@ fn measure_scene(scene: &Scene, entries: &[Entry], rows: &mut Vec<Row>) -> usize
             accuracy,
         });
         match entry.generator {
-            Generator::Library(o) if o.degenerate_policy == DegeneratePolicy::Legacy => legacy = Some(tangents),
+            Generator::Library(o) if o == Options::legacy() => legacy = Some(tangents),
             Generator::Listing => listing = Some(tangents),
             _ => {}
         }
     }
+    let errors = |name: &str| {
+        rows.iter()
+            .rev()
+            .find(|r| r.scene == scene.name && r.vertices == scene.vertex_count() && r.method == name)
+            .map(|r| error_bits(&r.accuracy))
+    };
+    assert_eq!(
+        errors(MIKKTSPACE),
+        errors(MIKKTSPACE_C),
+        "{} {}: the errors of {MIKKTSPACE} and {MIKKTSPACE_C} differ",
+        scene.name,
+        scene.vertex_count()
+    );
     match (legacy, listing) {
         (Some(a), Some(b)) => a
             .iter()
@@ -378,6 +378,17 @@ fn measure_scene(scene: &Scene, entries: &[Entry], rows: &mut Vec<Row>) -> usize
             .count(),
         _ => 0,
     }
+}
+
+/// An accuracy's error statistics, exactly: the bits of its floats and its counts.
+fn error_bits(a: &Accuracy) -> [u64; 5] {
+    [
+        a.mean_deg.to_bits(),
+        a.p99_deg.to_bits(),
+        a.max_deg.to_bits(),
+        a.wrong_handedness as u64,
+        a.non_finite as u64,
+    ]
 }
 
 fn csv(rows: &[Row]) -> String {
@@ -403,9 +414,9 @@ fn csv(rows: &[Row]) -> String {
 }
 
 /// Marker colours, one per entry, in entry order.
-const COLOURS: [&str; 11] = [
-    "#1f77b4", "#17becf", "#2ca02c", "#98df8a", "#9467bd", "#000000", "#d62728", "#ff7f0e", "#ffbb78", "#8c564b",
-    "#e377c2",
+const COLOURS: [&str; 12] = [
+    "#1f77b4", "#17becf", "#2ca02c", "#98df8a", "#9467bd", "#bcbd22", "#000000", "#d62728", "#ff7f0e", "#ffbb78",
+    "#8c564b", "#e377c2",
 ];
 
 /// The torus rows as a log-log scatter, one polyline per method through its sizes.
@@ -735,6 +746,13 @@ fn agreement(entries: &[Entry]) -> Option<String> {
         }
         per_file.push((row.path.clone(), sums));
     }
+    let agreed = |name: &str| entries.iter().position(|e| e.name == name).map(|k| totals[k]);
+    let (ours, theirs) = (agreed(MIKKTSPACE), agreed(MIKKTSPACE_C));
+    assert_eq!(
+        ours.map(|a| (a.agree, a.seam_agree)),
+        theirs.map(|a| (a.agree, a.seam_agree)),
+        "the agreement of {MIKKTSPACE} and {MIKKTSPACE_C} differ"
+    );
 
     writeln!(
         text,
@@ -938,7 +956,9 @@ fn main() {
          angle between its tangent and the true tangent dP/ds projected onto its tangent plane; \
          wrong w: the share of vertices whose handedness sign differs from the true one. Time: \
          median of repeated runs of the generating call alone, one thread. MikkTSpace and \
-         meshoptimizer write per-corner tangents; each vertex takes its first corner's. Peers: \
+         meshoptimizer write per-corner tangents; each vertex takes its first corner's, as this \
+         library's method MIKKTSPACE (`Options::mikktspace()`, mikktspace.c's frames bit for bit) \
+         does in the per-vertex call timed here. Peers: \
          listing.c (`c_tests/listing.c`, the listing in C, built with -ffp-contract=off), meshopt \
          0.7.0 (meshoptimizer 1.3, `meshopt_generateTangents`, default and MikkTSpace-compatible), \
          mikktspace-sys 0.1.1 (mikktspace.c) and bevy_mikktspace 1.0.0.\n\n\
@@ -957,7 +977,8 @@ fn main() {
     .unwrap();
     writeln!(
         md,
-        "Check: LENGYEL+LEGACY and listing.c {} on every scene.\n",
+        "Check: LENGYEL+LEGACY and listing.c {} on every scene; the errors of {MIKKTSPACE} equal \
+         those of {MIKKTSPACE_C} exactly on every scene and size (the run stops otherwise).\n",
         if legacy_mismatches == 0 {
             "agreed bit for bit".to_string()
         } else {

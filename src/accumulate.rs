@@ -144,13 +144,37 @@ impl Faces {
     }
 }
 
-/// Corner `k`'s contributions for one batch: the tangent times its weight, the weight, and the
-/// corner's handedness.
+/// Each corner's handedness for one batch: which of its vertex's sums the corner adds to.
+struct Sides {
+    /// 1 for a right-handed corner, else 0 (`u32` for the reason [`Faces::valid`] gives).
+    right_handed: [[u32; LANES]; 3],
+}
+
+impl Sides {
+    fn new() -> Self {
+        Sides {
+            right_handed: [[0; LANES]; 3],
+        }
+    }
+
+    /// A corner is right-handed when its triangle's UV determinant is positive, unless its vertex
+    /// normal faces away from the winding, which turns the frame's handedness; a non-finite normal
+    /// says nothing about it.
+    fn classify(&mut self, faces: &Faces, batch: &TriangleBatch) {
+        for k in 0..3 {
+            for i in 0..lanes_in_use(batch.len) {
+                let normal = lane3(&batch.normal[k], i);
+                let facing_away = normal.is_finite() & (normal.dot(lane3(&faces.face_normal, i)) < 0.0);
+                self.right_handed[k][i] = u32::from((faces.det[i] > 0.0) != facing_away);
+            }
+        }
+    }
+}
+
+/// Corner `k`'s contributions for one batch: the tangent times its weight, and the weight.
 struct Corners {
     tangent: [[Lanes; 3]; 3],
     weight: [Lanes; 3],
-    /// 1 for a right-handed corner, else 0 (`u32` for the reason [`Faces::valid`] gives).
-    right_handed: [[u32; LANES]; 3],
 }
 
 impl Corners {
@@ -158,7 +182,6 @@ impl Corners {
         Corners {
             tangent: [[[0.0; LANES]; 3]; 3],
             weight: [[0.0; LANES]; 3],
-            right_handed: [[0; LANES]; 3],
         }
     }
 
@@ -191,13 +214,6 @@ impl Corners {
                     faces,
                 ),
                 Method::Uniform => self.set(k, lanes, |i| (lane3(&faces.direction, i), 1.0), faces),
-            }
-            for i in 0..lanes {
-                // A normal facing away from the winding turns the frame's handedness; a
-                // non-finite normal says nothing about it.
-                let normal = lane3(normals, i);
-                let facing_away = normal.is_finite() & (normal.dot(lane3(&faces.face_normal, i)) < 0.0);
-                self.right_handed[k][i] = u32::from((faces.det[i] > 0.0) != facing_away);
             }
         }
     }
@@ -298,13 +314,22 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
     let mut report = Report::default();
     let v_sign = if options.flip_v { -1.0 } else { 1.0 };
     let owned = scratch.first..scratch.first + scratch.flags.len();
-    let mut reader = BatchReader::new(mesh, texcoords, owned, true)?;
+    let triangles = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
+    let mut reader = BatchReader::new(
+        mesh,
+        texcoords,
+        triangles,
+        |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v)),
+        true,
+    );
     // Each in its own let, so that the 16 KiB of lanes are built in place rather than moved.
     let mut batch = TriangleBatch::new();
     let mut faces = Faces::new();
+    let mut sides = Sides::new();
     let mut corners = Corners::new();
     while reader.fill(&mut batch)? {
         faces.solve(&batch, v_sign, options.degenerate_threshold);
+        sides.classify(&faces, &batch);
         corners.weigh(options.method, &faces, &batch);
         for lane in 0..batch.len {
             if faces.valid[lane] == 0 {
@@ -328,7 +353,7 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
                     continue;
                 };
                 let sums = &mut scratch.sums[slot];
-                let side = if corners.right_handed[k][lane] != 0 {
+                let side = if sides.right_handed[k][lane] != 0 {
                     &mut sums.primary
                 } else {
                     &mut sums.secondary
@@ -342,6 +367,42 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
         }
     }
     Ok(report)
+}
+
+/// Calls `visit(t, k, v, right_handed)` for corner `k` (vertex `v`) of each non-degenerate
+/// triangle `t` in `triangles` whose vertices `keep` accepts, in triangle order: the handedness
+/// [`accumulate`] added that corner with, computed the same way. Without texture coordinates no
+/// triangle is measured and nothing is visited.
+pub fn visit_corner_sides(
+    mesh: &Mesh,
+    options: &Options,
+    triangles: core::ops::Range<usize>,
+    keep: impl Fn(&[usize; 3]) -> bool,
+    mut visit: impl FnMut(usize, usize, usize, bool),
+) -> Result<(), Error> {
+    let Some(texcoords) = mesh.texcoords else {
+        return Ok(());
+    };
+    let v_sign = if options.flip_v { -1.0 } else { 1.0 };
+    let mut reader = BatchReader::new(mesh, texcoords, triangles, keep, true);
+    let mut batch = TriangleBatch::new();
+    let mut faces = Faces::new();
+    let mut sides = Sides::new();
+    while reader.fill(&mut batch)? {
+        faces.solve(&batch, v_sign, options.degenerate_threshold);
+        sides.classify(&faces, &batch);
+        for lane in (0..batch.len).filter(|&lane| faces.valid[lane] != 0) {
+            for k in 0..3 {
+                visit(
+                    batch.triangle[lane],
+                    k,
+                    batch.vertex[k][lane],
+                    sides.right_handed[k][lane] != 0,
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Without texture coordinates nothing is measured: the triangles only mark their vertices used.

@@ -67,43 +67,45 @@ impl TriangleBatch {
     }
 }
 
-/// Walks a mesh's triangles in order, a batch at a time, keeping those with a corner in
-/// `owned` (one worker's vertex range) and checking every index on the way.
-pub struct BatchReader<'m> {
+/// Walks a range of a mesh's triangles in order, a batch at a time, keeping those whose vertices
+/// `keep` accepts (e.g. those with a corner in one worker's vertex range) and checking every index
+/// on the way.
+pub struct BatchReader<'m, K> {
     mesh: &'m Mesh<'m>,
     texcoords: Strided<'m, [f32; 2]>,
-    owned: core::ops::Range<usize>,
+    keep: K,
     with_normals: bool,
     next: usize,
-    count: usize,
+    end: usize,
 }
 
-impl<'m> BatchReader<'m> {
-    /// A reader over every triangle of `mesh`.
+impl<'m, K: Fn(&[usize; 3]) -> bool> BatchReader<'m, K> {
+    /// A reader over `triangles`, whole triangles of `mesh`.
     pub fn new(
         mesh: &'m Mesh<'m>,
         texcoords: Strided<'m, [f32; 2]>,
-        owned: core::ops::Range<usize>,
+        triangles: core::ops::Range<usize>,
+        keep: K,
         with_normals: bool,
-    ) -> Result<Self, Error> {
-        Ok(BatchReader {
+    ) -> Self {
+        BatchReader {
             mesh,
             texcoords,
-            owned,
+            keep,
             with_normals,
-            next: 0,
-            count: mesh.indices.triangle_count(mesh.vertex_count())?,
-        })
+            next: triangles.start,
+            end: triangles.end,
+        }
     }
 
     /// Fills `batch` with the next triangles; false once every triangle has been read.
     pub fn fill(&mut self, batch: &mut TriangleBatch) -> Result<bool, Error> {
         batch.len = 0;
-        while batch.len < LANES && self.next < self.count {
+        while batch.len < LANES && self.next < self.end {
             let t = self.next;
             self.next += 1;
             let corners = self.mesh.checked_triangle(t)?;
-            if !corners.iter().any(|v| self.owned.contains(v)) {
+            if !(self.keep)(&corners) {
                 continue;
             }
             let lane = batch.len;

@@ -24,8 +24,9 @@ pub type tbasis_status = u32;
 
 /// Success.
 pub const TBASIS_OK: tbasis_status = 0;
-/// A required pointer is NULL: `mesh`, `output`, `output->tangents`, or a vertex or index buffer
-/// whose count is nonzero (`texcoords` may be NULL except with policy LEGACY).
+/// A required pointer is NULL: `mesh`, `output`, `output->tangents`, the `tangents` of
+/// `tbasis_generate_corners` when the mesh has corners, or a vertex or index buffer whose count is
+/// nonzero (`texcoords` may be NULL except with policy LEGACY or method MIKKTSPACE).
 pub const TBASIS_ERROR_NULL_POINTER: tbasis_status = 1;
 /// A stride is smaller than its element: 12 bytes for positions and normals, 8 for texcoords,
 /// 16 for tangents, 12 for bitangents.
@@ -196,8 +197,8 @@ pub struct tbasis_report {
     /// Corners where method MIKKTSPACE with policy SKIP or INHERIT replaced what mikktspace.c
     /// gives (a non-finite, zero or non-unit tangent, or one not perpendicular to the normal).
     pub repaired_corners: usize,
-    /// Method MIKKTSPACE: vertices whose corners do not all get the same bits, the vertices
-    /// `tbasis_split_corners` would duplicate. `tbasis_generate` gives each its first corner's.
+    /// Method MIKKTSPACE: vertices whose corners do not all get the same bits (the vertices a seam
+    /// split must duplicate to draw them exactly). `tbasis_generate` gives each its first corner's.
     pub split_vertices: usize,
 }
 
@@ -416,7 +417,17 @@ unsafe fn caller_scratch<'a>(
 ///
 /// With `TBASIS_METHOD_MIKKTSPACE` each corner gets exactly mikktspace.c's frame for it. The
 /// per-vertex methods give each corner its vertex's frame, except at a mirror fold (a vertex used
-/// by triangles of both UV orientations), where each corner gets the frame of its own side.
+/// by triangles of both UV orientations), where each corner gets the frame of its own side:
+///
+/// - a corner gets exactly the bits `tbasis_generate` writes for its vertex;
+/// - except at a mirror fold whose vertex frame was measured (from the side whose tangents sum
+///   longer): there a corner of a non-degenerate triangle on the other side gets the frame of that
+///   side's own sum, with that side's `w`, when the sum passes the test the vertex's passed;
+/// - so corners of degenerate triangles, all corners of a fold vertex that inherited its frame or
+///   fell back, and (policy LEGACY, which has no sides) every corner get their vertex's frame.
+///
+/// Needs the same scratch as `tbasis_generate` (`tbasis_scratch_size`), allocates nothing more
+/// per corner, and gives the same `report`; `threads` changes no bit.
 ///
 /// - `mesh`, `options`, `report`: as for `tbasis_generate` (`options` and `report` may be NULL).
 /// - `tangents`: `(corner_count - 1) * tangents_stride + 16` bytes, written only on `TBASIS_OK`;
@@ -502,9 +513,16 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 }
 
 /// Bytes of `options->scratch` a `tbasis_generate` or `tbasis_generate_corners` call on `mesh`
-/// with `options` needs: `vertex_count * 29 + 3` for the per-vertex methods and
-/// `MIKKTSPACE_WORDS * 4 + 3` for `TBASIS_METHOD_MIKKTSPACE` (see the README), 0 when the mesh is
-/// empty. Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
+/// with `options` needs, 0 when the mesh is empty:
+///
+/// - per-vertex methods: `vertex_count * 29 + 3` for both calls, whatever `index_count` (28 bytes
+///   of tangent sums and a flag byte per vertex, 3 for alignment; per corner nothing: the corner
+///   call keeps each vertex's frames in its sums);
+/// - `TBASIS_METHOD_MIKKTSPACE`: with `C` corners (`index_count`, or `vertex_count` when
+///   unindexed), `T = C / 3` triangles and `V = vertex_count`:
+///   `53*C + 216*T + 4*V + 4*max(2*V + 2, C) + 72` (about 125 bytes per corner).
+///
+/// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
 /// `options` may be NULL (the defaults).
 ///
 /// # Safety

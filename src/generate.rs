@@ -4,9 +4,9 @@
 use crate::mesh::{Mesh, Output, OutputPart};
 use crate::options::{DegeneratePolicy, Method, Options};
 use crate::report::{count_flags, Report};
-use crate::scratch::{self, OwnedScratch, Scratch};
+use crate::scratch::{self, Scratch};
 use crate::status::Error;
-use crate::strided::{pod_prefix_mut, Footprint, StridedMut};
+use crate::strided::{Footprint, StridedMut};
 use crate::{accumulate, legacy, mikktspace, parallel, resolve, validate, vertex_corners};
 
 /// Computes a unit tangent and handedness for every vertex of `mesh` into `output`.
@@ -63,22 +63,30 @@ pub fn generate_into(
     });
     validate::validate(mesh, options, output, scratch_footprint)?;
     if options.method == Method::Mikktspace {
-        let words = mikktspace::scratch_words(vertex_count, mesh.corner_count()).ok_or(Error::SizeOverflow)?;
-        return with_words(scratch, words, |words| {
-            mikktspace::generate_vertices(mesh, options, output, words, report)
+        let bytes = mikktspace::scratch_bytes(vertex_count, mesh.corner_count()).ok_or(Error::SizeOverflow)?;
+        return with_bytes(scratch, bytes, |bytes| {
+            mikktspace::generate_vertices(mesh, options, output, bytes, report)
         });
     }
 
     // 2. Working memory: per-vertex sums and flags, in the caller's scratch or on the heap.
-    let mut owned;
-    let mut scratch = match scratch {
-        Some(bytes) => scratch::carve(bytes, vertex_count)?,
-        None => {
-            owned = OwnedScratch::allocate(vertex_count)?;
-            owned.scratch()
-        }
-    };
+    scratch::with_scratch(scratch, vertex_count, |scratch| {
+        resolve_vertices(mesh, options, scratch, Some(output), report)
+    })
+}
 
+/// Steps 3 to 6 of [`generate_into`] on a validated mesh: each vertex's frame into `output`, or,
+/// without one (the per-corner output), kept in `scratch` (see [`VertexSums`]).
+///
+/// [`VertexSums`]: crate::scratch::VertexSums
+pub(crate) fn resolve_vertices(
+    mesh: &Mesh,
+    options: &Options,
+    scratch: &mut Scratch,
+    mut output: Option<&mut Output>,
+    report: &mut Report,
+) -> Result<(), Error> {
+    let vertex_count = mesh.vertex_count();
     // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners;
     //    with several workers, each adds to its own range of vertices, in triangle order.
     let workers = parallel::worker_count(options.threads, mesh);
@@ -87,7 +95,7 @@ pub fn generate_into(
         _ => accumulate::accumulate(mesh, options, part),
     };
     let mut found = if workers == 1 {
-        accumulate_range(&mut scratch)?
+        accumulate_range(scratch)?
     } else {
         let ends = parallel::range_ends(vertex_count, workers);
         parallel::merge(parallel::run(scratch.split(&ends), |mut part| {
@@ -105,7 +113,7 @@ pub fn generate_into(
 
     // 5. Per vertex: Gram-Schmidt against the normal, handedness in w, fallbacks; write.
     let policy = options.degenerate_policy;
-    let write_range = |part: &mut Scratch, out: &mut OutputPart| {
+    let write_range = |part: &mut Scratch, out: Option<&mut OutputPart>| {
         let mut written = Report::default();
         let deferred = match policy {
             DegeneratePolicy::Legacy => {
@@ -117,11 +125,15 @@ pub fn generate_into(
         (written, deferred)
     };
     let (written, deferred) = if workers == 1 {
-        write_range(&mut scratch, &mut output.whole())
+        write_range(scratch, output.as_deref_mut().map(Output::whole).as_mut())
     } else {
         let ends = parallel::range_ends(vertex_count, workers);
-        let parts = scratch.split(&ends).into_iter().zip(output.split(&ends)).collect();
-        parallel::run(parts, |(mut part, mut out)| write_range(&mut part, &mut out))
+        let outputs: Vec<Option<OutputPart>> = match output.as_deref_mut() {
+            Some(output) => output.split(&ends).into_iter().map(Some).collect(),
+            None => ends.iter().map(|_| None).collect(),
+        };
+        let parts = scratch.split(&ends).into_iter().zip(outputs).collect();
+        parallel::run(parts, |(mut part, mut out)| write_range(&mut part, out.as_mut()))
             .into_iter()
             .fold((Report::default(), 0), |(mut total, deferred), (written, more)| {
                 total.merge(&written);
@@ -132,7 +144,8 @@ pub fn generate_into(
 
     // 6. INHERIT: vertices left without a tangent take their neighbours', ring by ring.
     if deferred > 0 {
-        resolve::write_inherited(mesh, &mut scratch, &mut output.whole(), &mut found);
+        let mut whole = output.map(Output::whole);
+        resolve::write_inherited(mesh, scratch, whole.as_mut(), &mut found);
     }
     *report = found;
     Ok(())
@@ -143,7 +156,13 @@ pub fn generate_into(
 ///
 /// Method [`Method::Mikktspace`] gives exactly mikktspace.c's frame per corner. The per-vertex
 /// methods give each corner its vertex's frame, except at a mirror fold, where each corner gets the
-/// frame of its own side. On error nothing in `tangents` has been written.
+/// frame of its own side. Exactly: a corner gets the bits [`generate`] writes for its vertex, except
+/// where that vertex is a mirror fold whose frame was measured (from the side whose tangents sum
+/// longer): there a corner of a non-degenerate triangle on the other side gets the frame of that
+/// side's own sum, with its `w`, when the sum passes the test the vertex's passed. Corners of
+/// degenerate triangles, of fold vertices that inherited or fell back, and all corners under
+/// policy LEGACY get their vertex's frame. Same scratch ([`scratch_size`]) and report as
+/// [`generate_into`]; `threads` changes no bit. On error nothing in `tangents` has been written.
 ///
 /// ```
 /// use tbasis::{generate_corners, Indices, Mesh, Options, Strided, StridedMut};
@@ -190,31 +209,26 @@ pub fn generate_corners_into(
     });
     validate::validate_corners(mesh, options, tangents, scratch_footprint)?;
     if options.method == Method::Mikktspace {
-        let words = mikktspace::scratch_words(mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;
-        return with_words(scratch, words, |words| {
-            mikktspace::generate_corners(mesh, options, tangents, words, report)
+        let bytes = mikktspace::scratch_bytes(mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;
+        return with_bytes(scratch, bytes, |bytes| {
+            mikktspace::generate_corners(mesh, options, tangents, bytes, report)
         });
     }
     vertex_corners::generate_corners(mesh, options, tangents, scratch, report)
 }
 
-/// Runs `job` on `words` zeroed 32-bit words of working memory: the caller's bytes (aligned inside
-/// them) or a fresh allocation.
-fn with_words<R>(
+/// Runs `job` on `size` bytes of working memory: the caller's, or a fresh zeroed allocation.
+fn with_bytes<R>(
     scratch: Option<&mut [u8]>,
-    words: usize,
-    job: impl FnOnce(&mut [u32]) -> Result<R, Error>,
+    size: usize,
+    job: impl FnOnce(&mut [u8]) -> Result<R, Error>,
 ) -> Result<R, Error> {
     match scratch {
-        Some(bytes) => {
-            let (words, _) = pod_prefix_mut::<u32>(bytes, words).ok_or(Error::ScratchTooSmall)?;
-            words.fill(0);
-            job(words)
-        }
+        Some(bytes) => job(bytes.get_mut(..size).ok_or(Error::ScratchTooSmall)?),
         None => {
             let mut owned = Vec::new();
-            owned.try_reserve_exact(words).map_err(|_| Error::OutOfMemory)?;
-            owned.resize(words, 0u32);
+            owned.try_reserve_exact(size).map_err(|_| Error::OutOfMemory)?;
+            owned.resize(size, 0u8);
             job(&mut owned)
         }
     }
@@ -231,14 +245,8 @@ pub fn scratch_size_for(mesh: &Mesh, options: &Options) -> Option<usize> {
 /// [`scratch_size_for`] from the counts alone.
 pub(crate) fn scratch_bytes(method: Method, vertex_count: usize, corner_count: usize) -> Option<usize> {
     match method {
-        Method::Mikktspace => {
-            let words = mikktspace::scratch_words(vertex_count, corner_count)?;
-            if words == 0 {
-                return Some(0);
-            }
-            words.checked_mul(4)?.checked_add(3)
-        }
-        _ => vertex_corners::scratch_size(vertex_count, corner_count),
+        Method::Mikktspace => mikktspace::scratch_bytes(vertex_count, corner_count),
+        _ => vertex_corners::scratch_size(vertex_count),
     }
 }
 

@@ -149,9 +149,10 @@ impl Listing<'_> {
 }
 
 /// Second loop of the listing: `T' = normalize(t - n * dot(n, t))`,
-/// `w = dot(cross(n, t), tan2) < 0 ? -1 : 1`.
-pub fn resolve(mesh: &Mesh, scratch: &Scratch, output: &mut OutputPart) {
-    for (slot, sums) in scratch.sums.iter().enumerate() {
+/// `w = dot(cross(n, t), tan2) < 0 ? -1 : 1`. Without an `output` (the per-corner output) each
+/// vertex keeps its frame in its sums instead.
+pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut OutputPart>) {
+    for (slot, sums) in scratch.sums.iter_mut().enumerate() {
         let a = scratch.first + slot;
         let n = Vec3::from_array(mesh.normals.get(a));
         let t = Vec3::from_array(sums.primary);
@@ -160,7 +161,10 @@ pub fn resolve(mesh: &Mesh, scratch: &Scratch, output: &mut OutputPart) {
         let orthogonal = t - n * dot(n, t);
         let tangent = orthogonal * (1.0 / dot(orthogonal, orthogonal).sqrt());
         let w = if dot(cross(n, t), tan2) < 0.0 { -1.0 } else { 1.0 };
-        output.write(a, tangent, w, n);
+        match output.as_deref_mut() {
+            Some(output) => output.write(a, tangent, w, n),
+            None => sums.keep_frame(tangent, w),
+        }
     }
 }
 

@@ -65,8 +65,27 @@ pub enum Resolved {
 #[inline(always)]
 pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
     let (sum, w) = longer_side(Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
+    resolve_side(sum, w, sums.weight, normal)
+}
+
+/// The frame of the handedness [`resolve`] did not keep (the one with `w = -kept_w`), by the same
+/// test against the same total weight: at a mirror fold, the frame of the other side's corners.
+#[inline(always)]
+pub fn resolve_other_side(sums: &VertexSums, kept_w: f32, normal: Option<Vec3>) -> Resolved {
+    let (sum, w) = if kept_w > 0.0 {
+        (sums.secondary, -1.0)
+    } else {
+        (sums.primary, 1.0)
+    };
+    resolve_side(Vec3::from_array(sum), w, sums.weight, normal)
+}
+
+/// One handedness's sum made a frame: the normal removed, normalized, if what is left is at least
+/// [`USABLE_SHARE`] of `weight`, the total weight that went into the vertex.
+#[inline(always)]
+fn resolve_side(sum: Vec3, w: f32, weight: f32, normal: Option<Vec3>) -> Resolved {
     match orthonormalize(sum, normal) {
-        Some((in_plane, tangent)) if in_plane > USABLE_SHARE * sums.weight => Resolved::Measured(tangent, w),
+        Some((in_plane, tangent)) if in_plane > USABLE_SHARE * weight => Resolved::Measured(tangent, w),
         _ => Resolved::Missing,
     }
 }
@@ -101,14 +120,19 @@ pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
 /// under SKIP (and REJECT, which reaches here only without degenerate triangles) they get the
 /// fallback frame at once. The common case runs a batch of vertices at a time in SIMD lanes
 /// ([`Lanes`]); a vertex it cannot settle exactly takes the careful path ([`resolve`]).
+///
+/// Without an `output` (the per-corner output) each vertex keeps its frame in its sums instead
+/// ([`VertexSums::keep_frame`]), and a measured mirror-fold vertex also keeps its other side's
+/// frame when that side's sum is usable ([`resolve_other_side`], flag [`flag::SIDE_FRAME`]).
 pub fn write_measured(
     mesh: &Mesh,
     policy: DegeneratePolicy,
     scratch: &mut Scratch,
-    output: &mut OutputPart,
+    mut output: Option<&mut OutputPart>,
     report: &mut Report,
 ) -> usize {
     let defer_missing = policy == DegeneratePolicy::Inherit && mesh.texcoords.is_some();
+    let keep_sides = output.is_none();
     let mut deferred = 0usize;
     let mut lanes = ResolvedLanes::new();
     for (batch, sums) in scratch.sums.chunks_mut(LANES).enumerate() {
@@ -134,11 +158,21 @@ pub fn write_measured(
             report.abnormal_normals += usize::from(!normal.was_unit);
             match resolved {
                 Resolved::Measured(t, w) => {
-                    write_vertex(output, v, t, w, normal.unit);
+                    let flags = &mut scratch.flags[slot];
+                    // The other side's frame, from its sum, before the frame takes the sum's place.
+                    let side = if keep_sides && is_mirror_fold(*flags) {
+                        resolve_other_side(sums, w, normal.unit)
+                    } else {
+                        Resolved::Missing
+                    };
+                    write_vertex(output.as_deref_mut(), sums, v, t, w, normal.unit);
+                    if let Resolved::Measured(side_tangent, _) = side {
+                        sums.secondary = side_tangent.to_array();
+                        *flags |= flag::SIDE_FRAME;
+                    }
                     if defer_missing {
-                        sums.primary = t.to_array();
-                        sums.weight = w;
-                        scratch.flags[slot] |= flag::RESOLVED;
+                        sums.keep_frame(t, w);
+                        *flags |= flag::RESOLVED;
                     }
                 }
                 Resolved::Missing if defer_missing => {
@@ -149,7 +183,7 @@ pub fn write_measured(
                 }
                 Resolved::Missing => {
                     let (t, w) = fallback(normal.unit);
-                    write_vertex(output, v, t, w, normal.unit);
+                    write_vertex(output.as_deref_mut(), sums, v, t, w, normal.unit);
                     report.fallback_vertices += 1;
                 }
             }
@@ -216,30 +250,48 @@ impl ResolvedLanes {
     }
 }
 
+/// A vertex used by non-degenerate triangles of both UV orientations.
+#[inline(always)]
+pub fn is_mirror_fold(flags: u8) -> bool {
+    let both = flag::POSITIVE_UV | flag::NEGATIVE_UV;
+    flags & both == both
+}
+
 /// Policy INHERIT, after [`write_measured`] deferred some vertices: spreads tangents into them
-/// from their neighbours ([`inherit::propagate`], on the whole mesh), then writes them, with the
-/// fallback frame where nothing reached.
-pub fn write_inherited(mesh: &Mesh, scratch: &mut Scratch, output: &mut OutputPart, report: &mut Report) {
+/// from their neighbours ([`inherit::propagate`], on the whole mesh), then writes them (or, without
+/// an `output`, keeps them in their sums), with the fallback frame where nothing reached.
+pub fn write_inherited(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut OutputPart>, report: &mut Report) {
     report.inherited_vertices = inherit::propagate(mesh, scratch);
     for v in 0..mesh.vertex_count() {
         if scratch.flags[v] & flag::DEFERRED == 0 {
             continue;
         }
         let normal = VertexNormal::new(mesh.normals.get(v)).unit;
+        let sums = &mut scratch.sums[v];
         let (t, w) = if scratch.flags[v] & flag::RESOLVED != 0 {
-            (Vec3::from_array(scratch.sums[v].primary), scratch.sums[v].weight)
+            (Vec3::from_array(sums.primary), sums.weight)
         } else {
             report.fallback_vertices += 1;
             fallback(normal)
         };
-        write_vertex(output, v, t, w, normal);
+        write_vertex(output.as_deref_mut(), sums, v, t, w, normal);
     }
 }
 
 /// Writes `(t, w)` and the bitangent `w * cross(n, t)`; without a usable normal, any unit vector
 /// orthogonal to `t` stands in for `n`, so the bitangent is still a unit vector orthogonal to `t`.
+/// Without an `output`, keeps `(t, w)` in the vertex's `sums`.
 #[inline(always)]
-fn write_vertex(output: &mut OutputPart, v: usize, t: Vec3, w: f32, normal: Option<Vec3>) {
-    let n = normal.unwrap_or_else(|| fallback_tangent(t));
-    output.write(v, t, w, n);
+fn write_vertex(
+    output: Option<&mut OutputPart>,
+    sums: &mut VertexSums,
+    v: usize,
+    t: Vec3,
+    w: f32,
+    normal: Option<Vec3>,
+) {
+    match output {
+        Some(output) => output.write(v, t, w, normal.unwrap_or_else(|| fallback_tangent(t))),
+        None => sums.keep_frame(t, w),
+    }
 }

@@ -3,6 +3,8 @@
 
 use core::mem::{align_of, size_of};
 
+use glam::Vec3;
+
 use crate::status::Error;
 use crate::strided::pod_prefix_mut;
 
@@ -11,7 +13,9 @@ use crate::strided::pod_prefix_mut;
 /// Policy LEGACY: `primary` is the listing's `tan1` (sum of dP/du) and `secondary` its `tan2`
 /// (sum of dP/dv). Other policies: `primary` sums the tangents of right-handed corners and
 /// `secondary` those of left-handed corners, `weight` the total weight of both; once a vertex is
-/// resolved, `primary` holds its unit tangent and `weight` its handedness.
+/// resolved, `primary` holds its unit tangent and `weight` its handedness ([`Self::keep_frame`]).
+/// For the per-corner output every vertex keeps its frame that way, and a mirror-fold vertex
+/// flagged [`flag::SIDE_FRAME`] keeps in `secondary` the unit tangent of its other side.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct VertexSums {
@@ -35,6 +39,32 @@ pub mod flag {
     pub(crate) const RESOLVED: u8 = 8;
     /// The vertex waits for its neighbours (policy INHERIT) and is written after them.
     pub(crate) const DEFERRED: u8 = 16;
+    /// Per-corner output: `secondary` holds the frame of the mirror-fold side the vertex's own
+    /// frame does not come from (its `w` is minus the vertex's).
+    pub(crate) const SIDE_FRAME: u8 = 32;
+}
+
+impl VertexSums {
+    /// Keeps a resolved frame in place of the sums: `primary` = tangent, `weight` = `w`.
+    #[inline(always)]
+    pub fn keep_frame(&mut self, tangent: Vec3, w: f32) {
+        self.primary = tangent.to_array();
+        self.weight = w;
+    }
+
+    /// The frame [`Self::keep_frame`] kept, as written out: `x, y, z, w`.
+    #[inline(always)]
+    pub fn kept_frame(&self) -> [f32; 4] {
+        let [x, y, z] = self.primary;
+        [x, y, z, self.weight]
+    }
+
+    /// The other side's frame a [`flag::SIDE_FRAME`] vertex keeps, as written out.
+    #[inline(always)]
+    pub fn kept_side_frame(&self) -> [f32; 4] {
+        let [x, y, z] = self.secondary;
+        [x, y, z, -self.weight]
+    }
 }
 
 /// Scratch bytes per vertex: one [`VertexSums`] and one flag byte.
@@ -127,6 +157,19 @@ impl OwnedScratch {
             flags: &mut self.flags,
             first: 0,
         }
+    }
+}
+
+/// Runs `job` on zeroed arrays for `vertex_count` vertices: laid out in the caller's `bytes`, or
+/// allocated when there are none.
+pub fn with_scratch<R>(
+    bytes: Option<&mut [u8]>,
+    vertex_count: usize,
+    job: impl FnOnce(&mut Scratch) -> Result<R, Error>,
+) -> Result<R, Error> {
+    match bytes {
+        Some(bytes) => job(&mut carve(bytes, vertex_count)?),
+        None => job(&mut OwnedScratch::allocate(vertex_count)?.scratch()),
     }
 }
 

@@ -320,8 +320,18 @@ unsafe impl<T: Element> Send for StridedMut<'_, T> {}
 pub unsafe trait Pod: Copy {}
 // SAFETY: three f32 + one f32 + three f32, repr(C), no padding.
 unsafe impl Pod for crate::scratch::VertexSums {}
-// SAFETY: a primitive integer.
+// SAFETY: primitive numbers and arrays of them have no padding and no invalid bit patterns.
 unsafe impl Pod for u32 {}
+// SAFETY: as above.
+unsafe impl Pod for u8 {}
+// SAFETY: as above.
+unsafe impl Pod for f32 {}
+// SAFETY: as above.
+unsafe impl Pod for [f32; 3] {}
+// SAFETY: as above.
+unsafe impl Pod for [u32; 3] {}
+// SAFETY: as above.
+unsafe impl Pod for [f32; 8] {}
 
 /// The first `count` elements of type `T` that fit in `bytes` after its first `T`-aligned address,
 /// and the bytes after them; `None` when they do not fit.

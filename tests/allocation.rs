@@ -1,4 +1,5 @@
-//! With caller scratch (and one thread), a call makes no heap allocation at all.
+//! With caller scratch (and one thread), a call makes no heap allocation at all, per-vertex or
+//! per-corner.
 
 #[path = "common/mod.rs"]
 mod common;
@@ -7,7 +8,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use common::cases::{mirror_fold, quantized_uv_sphere, unit_quad, Case};
-use tbasis::{scratch_size, DegeneratePolicy, Method, Options, Output, Report, StridedMut};
+use tbasis::{scratch_size, scratch_size_for, DegeneratePolicy, Error, Method, Options, Output, Report, StridedMut};
 
 /// Counts every allocation the process makes.
 struct Counting;
@@ -31,6 +32,15 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// Allocations `call` makes; it must return Ok.
+fn allocations_during(what: &str, call: impl FnOnce() -> Result<(), Error>) -> usize {
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let result = call();
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    assert_eq!(result, Ok(()), "{what}");
+    after - before
+}
+
 /// Allocations made by one call with caller scratch; the result must be Ok.
 fn allocations_during_call(case: &Case, options: &Options) -> usize {
     let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
@@ -41,12 +51,26 @@ fn allocations_during_call(case: &Case, options: &Options) -> usize {
         tangents: StridedMut::from_slice(&mut tangents),
         bitangents: Some(StridedMut::from_slice(&mut bitangents)),
     };
-    let mut report = Report::default();
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
-    let result = tbasis::generate_into(&mesh, options, &mut output, Some(&mut scratch), &mut report);
-    let after = ALLOCATIONS.load(Ordering::SeqCst);
-    assert_eq!(result, Ok(()), "{}", case.name);
-    after - before
+    allocations_during(&case.name, || {
+        tbasis::generate_into(&mesh, options, &mut output, Some(&mut scratch), &mut Report::default())
+    })
+}
+
+/// Allocations made by one per-corner call with caller scratch; the result must be Ok.
+fn allocations_during_corners_call(case: &Case, options: &Options) -> usize {
+    let mesh = case.mesh();
+    let mut corners = vec![[0.0f32; 4]; mesh.corner_count()];
+    let mut scratch = vec![0u8; scratch_size_for(&mesh, options).unwrap()];
+    let mut tangents = StridedMut::from_slice(&mut corners);
+    allocations_during(&case.name, || {
+        tbasis::generate_corners_into(
+            &mesh,
+            options,
+            &mut tangents,
+            Some(&mut scratch),
+            &mut Report::default(),
+        )
+    })
 }
 
 #[test]
@@ -69,6 +93,12 @@ fn caller_scratch_means_no_allocation() {
                     allocations_during_call(case, &options),
                     0,
                     "{} {method:?} {policy:?}",
+                    case.name
+                );
+                assert_eq!(
+                    allocations_during_corners_call(case, &options),
+                    0,
+                    "{} {method:?} {policy:?} per corner",
                     case.name
                 );
             }

@@ -200,6 +200,8 @@ int main(void)
         return 3;
     if (tbasis_calculate_tangent_array(-1, NULL, NULL, NULL, 0, NULL, NULL) != TBASIS_ERROR_INVALID_COUNT)
         return 4;
+    if (tbasis_generate_corners(NULL, &options, NULL, 16, &report) != TBASIS_ERROR_NULL_POINTER)
+        return 6;
     (void)output;
     return TBASIS_INDEX_U16 + TBASIS_METHOD_LENGYEL + TBASIS_DEGENERATE_LEGACY + TBASIS_FLAG_FLIP_V == 4 ? 0 : 5;
 }

@@ -37,7 +37,7 @@ __all__ = [
 
 # The header's constants (include/tbasis.h).
 VERSION_MAJOR = 0
-VERSION_MINOR = 1
+VERSION_MINOR = 2
 VERSION_PATCH = 0
 VERSION = VERSION_MAJOR * 1000000 + VERSION_MINOR * 1000 + VERSION_PATCH
 
@@ -47,17 +47,23 @@ FLAG_FLIP_V = 1
 
 
 class Method(enum.IntEnum):
-    """``tbasis_options.method``; DEFAULT is ANGLE."""
+    """``tbasis_options.method``; DEFAULT is ANGLE.
+
+    MIKKTSPACE is mikktspace.c's frame per corner; ``generate`` gives each vertex the frame of
+    its first corner (per-corner output is not in this binding yet).
+    """
 
     DEFAULT = 0
     LENGYEL = 1
     ANGLE = 2
     AREA = 3
     UNIFORM = 4
+    MIKKTSPACE = 5
 
 
 class Policy(enum.IntEnum):
-    """``tbasis_options.degenerate_policy``; DEFAULT is INHERIT."""
+    """``tbasis_options.degenerate_policy``; DEFAULT is the method's default: LEGACY for
+    MIKKTSPACE, INHERIT for the others."""
 
     DEFAULT = 0
     LEGACY = 1
@@ -137,6 +143,8 @@ class tbasis_report(ctypes.Structure):
         ("unreferenced_vertices", ctypes.c_size_t),
         ("inherited_vertices", ctypes.c_size_t),
         ("abnormal_normals", ctypes.c_size_t),
+        ("repaired_corners", ctypes.c_size_t),
+        ("split_vertices", ctypes.c_size_t),
     ]
 
 
@@ -155,6 +163,8 @@ class Report:
     unreferenced_vertices: int
     inherited_vertices: int
     abnormal_normals: int
+    repaired_corners: int
+    split_vertices: int
 
     @classmethod
     def _from_c(cls, report: tbasis_report) -> Report:
@@ -390,7 +400,8 @@ def generate(
     indices: None (unindexed: triangle i is vertices 3i..3i+2), or uint16/uint32 of shape
     ``(k,)`` or ``(m, 3)``; the C API takes packed indices, so strided ones are packed first.
 
-    method, policy: ``Method``/``Policy`` values (defaults ANGLE, INHERIT). threshold: degenerate
+    method, policy: ``Method``/``Policy`` values (defaults ANGLE, and the method's default policy:
+    INHERIT, or LEGACY for MIKKTSPACE). threshold: degenerate
     shape quality (None or 0: 1e-5). flip_v: V points down (glTF, Direct3D). threads: upper bound.
 
     out: an ``(n, 4)`` float32 array or view to write (e.g. ``vertices['tangent']``), returned;

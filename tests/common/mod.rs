@@ -5,6 +5,8 @@ pub mod artifacts;
 pub mod cases;
 pub mod invariants;
 pub mod load;
+pub mod mikktspace_reference;
+pub mod mikktspace_scenes;
 pub mod run;
 pub mod scenes;
 pub mod shapes;

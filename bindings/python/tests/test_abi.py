@@ -89,8 +89,8 @@ def test_struct_sizes_and_offsets_match_the_c_compiler(tmp_path):
 def test_library_version_and_functions():
     assert tbasis.version() == tbasis.VERSION
     lib = tbasis._lib()
-    for name in ("tbasis_generate", "tbasis_calculate_tangent_array", "tbasis_scratch_size",
-                 "tbasis_status_string", "tbasis_version"):
+    for name in ("tbasis_generate", "tbasis_generate_corners", "tbasis_calculate_tangent_array",
+                 "tbasis_scratch_size", "tbasis_status_string", "tbasis_version"):
         assert hasattr(lib, name)
     assert tbasis.status_string(tbasis.Status.OK)
     assert tbasis.status_string(tbasis.Status.OVERLAP) != tbasis.status_string(tbasis.Status.OK)

@@ -7,6 +7,8 @@ import tbasis
 from meshes import assert_frames, collapse_uvs_around, same_bits, torus, zero_uv_area_triangles
 
 Method, Policy = tbasis.Method, tbasis.Policy
+# The methods that sum tangents per vertex (MIKKTSPACE works per corner; its own tests are elsewhere).
+PER_VERTEX_METHODS = [m for m in Method if m != Method.MIKKTSPACE]
 
 
 @pytest.fixture
@@ -23,7 +25,7 @@ def angle_degrees(tangents, truth):
     return np.degrees(np.arccos(np.clip(cosine / np.linalg.norm(truth, axis=1), -1, 1)))
 
 
-@pytest.mark.parametrize("method", list(Method))
+@pytest.mark.parametrize("method", PER_VERTEX_METHODS)
 def test_every_method_gives_unit_frames_close_to_the_true_tangent(method):
     mesh = torus(nu=48, nv=24, jitter=0.002, random_diagonals=True, seed=3)
     tangents, report = tbasis.generate_with_report(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=method)
@@ -32,11 +34,14 @@ def test_every_method_gives_unit_frames_close_to_the_true_tangent(method):
     assert np.mean(angle_degrees(tangents, mesh.true_tangents)) < 1.0
     assert report.degenerate_triangles == 0 and report.first_degenerate_triangle is None
     assert report.mirrored_vertices == report.fallback_vertices == report.unreferenced_vertices == 0
+    assert report.repaired_corners == report.split_vertices == 0
 
 
 def test_methods_differ_and_default_is_angle():
     mesh = torus(jitter=0.01, random_diagonals=True, seed=5)
-    results = {m: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=m) for m in Method}
+    results = {
+        m: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=m) for m in PER_VERTEX_METHODS
+    }
     assert same_bits(results[Method.DEFAULT], results[Method.ANGLE])
     named = [results[m] for m in (Method.LENGYEL, Method.ANGLE, Method.AREA, Method.UNIFORM)]
     for i in range(len(named)):

@@ -1,0 +1,90 @@
+//! Groups of triangles around a welded vertex that share one tangent-space orientation
+//! (`Build4RuleGroups` and `AssignRecur`).
+//!
+//! A group starts at the first corner, in triangle order, of a usable triangle not yet in a group,
+//! and spreads across edges to the triangles around the same welded vertex, depth first (left
+//! neighbour, then right), as long as their UV orientation matches. A triangle with no usable
+//! derivative (`GROUP_WITH_ANY`) takes the orientation of the first group that reaches it: the
+//! order of the search is part of the result, so the recursion is replayed exactly, on a stack.
+#![forbid(unsafe_code)]
+
+use super::faces::{GROUP_WITH_ANY, ORIENT_PRESERVING};
+use super::NONE;
+
+/// The groups: group `i` is the triangles `faces[starts[i]..starts[i + 1]]` around welded vertex
+/// `vertex[i]`, with orientation `orientation[i]` (1: preserving).
+pub(crate) struct Groups<'a> {
+    pub starts: &'a mut [u32],
+    pub faces: &'a mut [u32],
+    pub vertex: &'a mut [u32],
+    pub orientation: &'a mut [u8],
+}
+
+/// Builds the groups and writes `assigned[g][k]`, the group of corner `k` of good triangle `g`
+/// ([`NONE`] when it has none). `stack` needs `6 * ids.len() + 2` words. Returns the group count.
+pub(crate) fn build(
+    ids: &[[u32; 3]],
+    neighbors: &[[u32; 3]],
+    flags: &mut [u8],
+    assigned: &mut [[u32; 3]],
+    groups: &mut Groups,
+    stack: &mut [u32],
+) -> usize {
+    assigned.fill([NONE; 3]);
+    let mut count = 0usize;
+    let mut filled = 0usize;
+    for f in 0..ids.len() {
+        for i in 0..3 {
+            if flags[f] & GROUP_WITH_ANY != 0 || assigned[f][i] != NONE {
+                continue;
+            }
+            let group = count as u32;
+            let vertex = ids[f][i];
+            let preserving = flags[f] & ORIENT_PRESERVING;
+            groups.starts[count] = filled as u32;
+            groups.vertex[count] = vertex;
+            groups.orientation[count] = preserving;
+            count += 1;
+            assigned[f][i] = group;
+            groups.faces[filled] = f as u32;
+            filled += 1;
+
+            // AssignRecur on the left neighbour, then the right: pushed right first.
+            let mut top = 0;
+            for neighbour in [neighbors[f][(i + 2) % 3], neighbors[f][i]] {
+                if neighbour != NONE {
+                    stack[top] = neighbour;
+                    top += 1;
+                }
+            }
+            while top > 0 {
+                top -= 1;
+                let t = stack[top] as usize;
+                let Some(k) = ids[t].iter().position(|&id| id == vertex) else {
+                    continue;
+                };
+                if assigned[t][k] != NONE {
+                    continue;
+                }
+                if flags[t] & GROUP_WITH_ANY != 0 && assigned[t] == [NONE; 3] {
+                    // The first group to reach it decides its orientation.
+                    flags[t] = (flags[t] & !ORIENT_PRESERVING) | preserving;
+                }
+                if flags[t] & ORIENT_PRESERVING != preserving {
+                    continue;
+                }
+                groups.faces[filled] = t as u32;
+                filled += 1;
+                assigned[t][k] = group;
+                for neighbour in [neighbors[t][(k + 2) % 3], neighbors[t][k]] {
+                    if neighbour != NONE {
+                        stack[top] = neighbour;
+                        top += 1;
+                    }
+                }
+            }
+        }
+    }
+    groups.starts[count] = filled as u32;
+    count
+}

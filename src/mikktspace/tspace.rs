@@ -1,0 +1,196 @@
+//! One tangent per corner from its group (`GenerateTSpaces` and `EvalTspace`).
+//!
+//! Within a group, mikktspace.c gives each triangle the sub-group of the group's triangles whose
+//! projected dP/ds and dP/dt both lie within the angular threshold of its own (with the default
+//! 180 degrees: cosines above -1, so only exactly opposite directions part), and the corner's
+//! tangent is the corner-angle-weighted sum of the projected dP/ds of that sub-group's usable
+//! triangles, in ascending triangle order. Comparing every pair is quadratic in a vertex's valence;
+//! when all projected directions of a group lie in one open half-space no pair can part, the
+//! sub-group is the whole group, and one sum serves every corner.
+#![forbid(unsafe_code)]
+
+use super::acos::acos;
+use super::faces::GROUP_WITH_ANY;
+use super::vector::{
+    add, dot, normal, normalize, position, project_normalized, scale, sub, vector_not_zero, Packed, Vec3,
+};
+
+/// Cosine of the default 180-degree angular threshold, as mikktspace.c computes it in float.
+fn threshold_cosine() -> f32 {
+    let angle = (180.0f32 * core::f32::consts::PI) / 180.0f32;
+    f64::from(angle).cos() as f32
+}
+
+/// What the per-group pass reads.
+pub(crate) struct Inputs<'a> {
+    /// Welded vertices of each good triangle.
+    pub ids: &'a [[u32; 3]],
+    /// Flags of each good triangle (after grouping).
+    pub flags: &'a [u8],
+    /// The triangle each good triangle is.
+    pub order: &'a [u32],
+    /// Per good corner `3g + k`: what it adds to its group ([`corner_terms`]).
+    pub terms: &'a CornerTerms<'a>,
+}
+
+/// Per good corner: dP/ds and dP/dt projected into the tangent plane of the corner's welded
+/// normal and normalized, and the corner angle measured in that plane (0 for a triangle with no
+/// usable derivative, which adds nothing).
+pub(crate) struct CornerTerms<'a> {
+    pub s: &'a mut [Vec3],
+    pub t: &'a mut [Vec3],
+    pub angle: &'a mut [f32],
+}
+
+/// Fills `terms` for the good triangles `first..first + terms.angle.len() / 3`. Every group that
+/// holds a corner sees the same welded vertex, so these depend on the corner alone and can be
+/// computed for any range of triangles independently (and on several threads).
+pub(crate) fn corner_terms(
+    attributes: &[Packed],
+    ids: &[[u32; 3]],
+    tangent_s: &[Vec3],
+    tangent_t: &[Vec3],
+    flags: &[u8],
+    first: usize,
+    terms: CornerTerms,
+) {
+    for (j, angle) in terms.angle.iter_mut().enumerate() {
+        let (g, k) = (first + j / 3, j % 3);
+        let n = normal(&attributes[ids[g][k] as usize]);
+        terms.s[j] = project_normalized(tangent_s[g], n);
+        terms.t[j] = project_normalized(tangent_t[g], n);
+        *angle = if flags[g] & GROUP_WITH_ANY == 0 {
+            corner_angle(attributes, ids[g], k, n)
+        } else {
+            0.0
+        };
+    }
+}
+
+/// Writes the tangent and orientation of every corner of the group's triangles `faces` (sorted here)
+/// around welded vertex `vertex`. `members` holds a word per face of the largest group.
+pub(crate) fn evaluate_group(
+    inputs: &Inputs,
+    faces: &mut [u32],
+    vertex: u32,
+    preserving: bool,
+    members: &mut [u32],
+    tangents: &mut [Vec3],
+    orientation: &mut [u8],
+) {
+    faces.sort_unstable();
+    let count = faces.len();
+    // Each face's corner at the group's vertex, as a good-corner number.
+    let members = &mut members[..count];
+    for (member, &f) in members.iter_mut().zip(faces.iter()) {
+        let i = inputs.ids[f as usize].iter().position(|&id| id == vertex).unwrap_or(0);
+        *member = 3 * f + i as u32;
+    }
+    let terms = inputs.terms;
+    let usable = |j: usize| inputs.flags[faces[j] as usize] & GROUP_WITH_ANY == 0;
+    let s = |j: usize| terms.s[members[j] as usize];
+    let t = |j: usize| terms.t[members[j] as usize];
+    let sum = |chosen: &mut dyn Iterator<Item = usize>| {
+        weighted_sum(chosen.map(|j| (terms.angle[members[j] as usize], s(j))))
+    };
+    let write = |j: usize, tangent: Vec3, tangents: &mut [Vec3], orientation: &mut [u8]| {
+        let corner = 3 * inputs.order[faces[j] as usize] as usize + members[j] as usize % 3;
+        tangents[corner] = tangent;
+        orientation[corner] = u8::from(preserving);
+    };
+
+    if one_half_space(count, &s, &usable) && one_half_space(count, &t, &usable) {
+        let tangent = sum(&mut (0..count).filter(|&j| usable(j)));
+        for j in 0..count {
+            write(j, tangent, tangents, orientation);
+        }
+        return;
+    }
+
+    // Some directions may be exactly opposite: compare every pair, as mikktspace.c does.
+    let threshold = threshold_cosine();
+    let member = |j: usize, k: usize| {
+        !usable(j) || !usable(k) || j == k || (dot(s(j), s(k)) > threshold && dot(t(j), t(k)) > threshold)
+    };
+    let mut subgroups: Vec<(Vec<usize>, Vec3)> = Vec::new();
+    for j in 0..count {
+        let own: Vec<usize> = (0..count).filter(|&k| member(j, k)).collect();
+        let tangent = match subgroups.iter().find(|(m, _)| *m == own) {
+            Some((_, tangent)) => *tangent,
+            None => {
+                let tangent = sum(&mut own.iter().copied().filter(|&k| usable(k)));
+                subgroups.push((own, tangent));
+                tangent
+            }
+        };
+        write(j, tangent, tangents, orientation);
+    }
+}
+
+/// The corner angle at `ids[i]`, its two edges projected into the tangent plane of `n` first.
+fn corner_angle(attributes: &[Packed], ids: [u32; 3], i: usize, n: Vec3) -> f32 {
+    let position = |id: u32| position(&attributes[id as usize]);
+    let p0 = position(ids[(i + 2) % 3]);
+    let p1 = position(ids[i]);
+    let p2 = position(ids[(i + 1) % 3]);
+    let v1 = project_normalized(sub(p0, p1), n);
+    let v2 = project_normalized(sub(p2, p1), n);
+    let cos = dot(v1, v2);
+    // mikktspace.c's ternaries, kept as written: `f32::clamp` is not promised to treat `NaN` alike.
+    #[allow(clippy::manual_clamp)]
+    let cos = if cos > 1.0 {
+        1.0
+    } else if cos < -1.0 {
+        -1.0
+    } else {
+        cos
+    };
+    acos(cos)
+}
+
+/// `sum(angle * s)` over `terms` in ascending triangle order, normalized when not zero.
+fn weighted_sum(terms: impl Iterator<Item = (f32, Vec3)>) -> Vec3 {
+    let mut sum = [0.0f32; 3];
+    for (angle, s) in terms {
+        sum = add(sum, scale(angle, s));
+    }
+    if vector_not_zero(sum) {
+        normalize(sum)
+    } else {
+        sum
+    }
+}
+
+/// True when no two usable directions `direction(0..count)` can have a cosine of -1 or
+/// less, nor a `NaN` one: every one is finite and either short (length at most 1/2, whose cosine
+/// with any of these stays above -1) or unit length within 1e-4 and more than 0.01 along the
+/// first unit one. Two such unit vectors sum to at least 0.02 along that axis, so their computed
+/// dot product stays above -1 + 1e-4 minus a few float roundings.
+fn one_half_space(count: usize, direction: &dyn Fn(usize) -> Vec3, usable: &dyn Fn(usize) -> bool) -> bool {
+    let mut axis: Option<Vec3> = None;
+    for j in 0..count {
+        if !usable(j) {
+            continue;
+        }
+        let d = direction(j);
+        if !d.iter().all(|x| x.is_finite()) {
+            return false;
+        }
+        let squared = dot(d, d);
+        if squared <= 0.25 {
+            continue;
+        }
+        if (squared - 1.0).abs() > 1e-4 {
+            return false;
+        }
+        match axis {
+            None => axis = Some(d),
+            Some(a) => {
+                if dot(a, d) <= 0.01 {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}

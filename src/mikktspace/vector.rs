@@ -1,0 +1,88 @@
+//! mikktspace.c's vector arithmetic, operation for operation.
+//!
+//! Exactness needs each sum and product in the order and precision the C code uses (no fused
+//! multiply-add, no reordering, `x * x + y * y + z * z` left to right), and its comparisons: a
+//! `NaN` fails every `>` and `<`, so the C ternaries are kept as ternaries rather than
+//! `f32::min`/`max`/`clamp`, which treat `NaN` differently.
+#![forbid(unsafe_code)]
+
+/// Three floats, as mikktspace.c's `SVec3`.
+pub(crate) type Vec3 = [f32; 3];
+
+/// A welded vertex's attributes, packed: position, normal, texture coordinate.
+pub(crate) type Packed = [f32; 8];
+
+#[inline(always)]
+pub(crate) fn position(a: &Packed) -> Vec3 {
+    [a[0], a[1], a[2]]
+}
+
+#[inline(always)]
+pub(crate) fn normal(a: &Packed) -> Vec3 {
+    [a[3], a[4], a[5]]
+}
+
+#[inline(always)]
+pub(crate) fn texcoord(a: &Packed) -> [f32; 2] {
+    [a[6], a[7]]
+}
+
+#[inline(always)]
+pub(crate) fn add(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+#[inline(always)]
+pub(crate) fn sub(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+#[inline(always)]
+pub(crate) fn scale(s: f32, v: Vec3) -> Vec3 {
+    [s * v[0], s * v[1], s * v[2]]
+}
+
+#[inline(always)]
+pub(crate) fn dot(a: Vec3, b: Vec3) -> f32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+pub(crate) fn length(v: Vec3) -> f32 {
+    dot(v, v).sqrt()
+}
+
+/// `==` on every component: +0 equals -0, `NaN` equals nothing.
+#[inline(always)]
+pub(crate) fn equal(a: Vec3, b: Vec3) -> bool {
+    a[0] == b[0] && a[1] == b[1] && a[2] == b[2]
+}
+
+/// `|x| > FLT_MIN`: false for zero, subnormals and `NaN`.
+#[inline(always)]
+pub(crate) fn not_zero(x: f32) -> bool {
+    x.abs() > f32::MIN_POSITIVE
+}
+
+#[inline(always)]
+pub(crate) fn vector_not_zero(v: Vec3) -> bool {
+    not_zero(v[0]) || not_zero(v[1]) || not_zero(v[2])
+}
+
+/// `v * (1 / |v|)`, as `Normalize` computes it.
+#[inline(always)]
+pub(crate) fn normalize(v: Vec3) -> Vec3 {
+    scale(1.0 / length(v), v)
+}
+
+/// `v` without its component along `n`, normalized when anything is left:
+/// `v - (n . v) n`, the projection every tangent and edge goes through before it is weighed.
+#[inline(always)]
+pub(crate) fn project_normalized(v: Vec3, n: Vec3) -> Vec3 {
+    let projected = sub(v, scale(dot(n, v), n));
+    if vector_not_zero(projected) {
+        normalize(projected)
+    } else {
+        projected
+    }
+}
