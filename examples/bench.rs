@@ -501,7 +501,10 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
     let mut scratch = Vec::new();
     if let Generator::Library(call) = generator {
         if call.caller_scratch {
-            let largest = scene.parts.iter().map(|p| scratch_size_for(&p.mesh(), &call.options).expect("scratch size"));
+            let largest = scene
+                .parts
+                .iter()
+                .map(|p| scratch_size_for(&p.mesh(), &call.options).expect("scratch size"));
             scratch = vec![1u8; largest.max().unwrap_or(0)];
         }
     }
@@ -528,7 +531,10 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
                         texcoords: &part.listing_texcoords,
                         indices: Some(&part.indices),
                     };
-                    assert!(black_box(mikktspace_reference::generate(geometry, tangents)), "mikktspace.c failed");
+                    assert!(
+                        black_box(mikktspace_reference::generate(geometry, tangents)),
+                        "mikktspace.c failed"
+                    );
                 }
                 Generator::Library(call) => {
                     let options = Options {
@@ -956,7 +962,11 @@ fn mikktspace_table(results: &[SceneResult], configs: &[Config]) -> String {
     );
     for r in results {
         let c = r.measured[reference].median;
-        for (config, m) in configs.iter().zip(&r.measured).filter(|(c, _)| c.generator.per_corner()) {
+        for (config, m) in configs
+            .iter()
+            .zip(&r.measured)
+            .filter(|(c, _)| c.generator.per_corner())
+        {
             writeln!(
                 text,
                 "| {} | {} | {:.1} | {} | {:.1}x |",

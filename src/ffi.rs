@@ -356,29 +356,47 @@ pub unsafe extern "C" fn tbasis_generate(
         if mesh.is_null() || output.is_null() {
             return Err(Error::NullPointer);
         }
-        let mesh_desc = ptr::read_unaligned(mesh);
-        let output_desc = ptr::read_unaligned(output);
-        let options_desc = if options.is_null() {
-            None
-        } else {
-            Some(ptr::read_unaligned(options))
-        };
-        let opts = options_of(options_desc)?;
-        let views = mesh_views(&mesh_desc)?;
-        let mut out = output_views(&output_desc, mesh_desc.vertex_count)?;
+        let (views, options_desc, opts) = call_inputs(mesh, options)?;
+        let mut out = output_views(&ptr::read_unaligned(output), views.vertex_count())?;
 
         let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
         let scratch = caller_scratch(options_desc, needed, |footprint| {
             check_overlaps(&views, &out, Some(footprint))
         })?;
 
-        let mut found = Report::default();
-        let result = generate_into(&views, &opts, &mut out, scratch, &mut found);
-        if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
-            ptr::write_unaligned(report, tbasis_report::from(found));
-        }
-        result
+        with_report(report, |found| generate_into(&views, &opts, &mut out, scratch, found))
     })
+}
+
+/// The mesh views and the options of a call (the options' C description too, for its scratch).
+///
+/// # Safety
+/// `mesh` (not NULL) and a non-NULL `options` must point to readable descriptors, and the mesh's
+/// buffers must be valid as the header documents.
+unsafe fn call_inputs<'a>(
+    mesh: *const tbasis_mesh,
+    options: *const tbasis_options,
+) -> Result<(Mesh<'a>, Option<tbasis_options>, Options), Error> {
+    let options_desc = (!options.is_null()).then(|| ptr::read_unaligned(options));
+    let opts = options_of(options_desc)?;
+    Ok((mesh_views(&ptr::read_unaligned(mesh))?, options_desc, opts))
+}
+
+/// Runs `call` and writes what it found to `report` (when not NULL) on success and on
+/// `TBASIS_ERROR_DEGENERATE_UV`, the two outcomes that fill a report.
+///
+/// # Safety
+/// `report` must be NULL or writable.
+unsafe fn with_report(
+    report: *mut tbasis_report,
+    call: impl FnOnce(&mut Report) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let mut found = Report::default();
+    let result = call(&mut found);
+    if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
+        ptr::write_unaligned(report, tbasis_report::from(found));
+    }
+    result
 }
 
 /// The caller's scratch bytes from `options`, once they are large enough (`needed`), span valid
@@ -450,26 +468,16 @@ pub unsafe extern "C" fn tbasis_generate_corners(
         if mesh.is_null() {
             return Err(Error::NullPointer);
         }
-        let mesh_desc = ptr::read_unaligned(mesh);
-        let options_desc = if options.is_null() {
-            None
-        } else {
-            Some(ptr::read_unaligned(options))
-        };
-        let opts = options_of(options_desc)?;
-        let views = mesh_views(&mesh_desc)?;
+        let (views, options_desc, opts) = call_inputs(mesh, options)?;
         let mut out = write_view(tangents, tangents_stride, views.corner_count())?;
         let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
         let scratch = caller_scratch(options_desc, needed, |footprint| {
             check_written(&views, &[Some(out.footprint()), Some(footprint)])
         })?;
 
-        let mut found = Report::default();
-        let result = generate_corners_into(&views, &opts, &mut out, scratch, &mut found);
-        if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
-            ptr::write_unaligned(report, tbasis_report::from(found));
-        }
-        result
+        with_report(report, |found| {
+            generate_corners_into(&views, &opts, &mut out, scratch, found)
+        })
     })
 }
 
@@ -520,7 +528,7 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 ///   call keeps each vertex's frames in its sums);
 /// - `TBASIS_METHOD_MIKKTSPACE`: with `C` corners (`index_count`, or `vertex_count` when
 ///   unindexed), `T = C / 3` triangles and `V = vertex_count`:
-///   `53*C + 216*T + 4*V + 4*max(2*V + 2, C) + 72` (about 125 bytes per corner).
+///   `57*C + 216*T + 4*V + 4*max(2*V + 2, C) + 75` (about 130 bytes per corner).
 ///
 /// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
 /// `options` may be NULL (the defaults).

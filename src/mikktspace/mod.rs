@@ -48,6 +48,8 @@ struct Buffers<'a> {
     welded: &'a mut [u32],
     /// Per welded vertex: the vertex its attributes come from, and those attributes.
     source: &'a mut [u32],
+    /// Per welded vertex: mikktspace.c's index for it (`4 * face + corner` of its representative).
+    values: &'a mut [u32],
     attributes: &'a mut [Packed],
     /// Per vertex, reused by phase (weld classes, first corners, flags).
     slots: &'a mut [u32],
@@ -76,6 +78,7 @@ impl<'a> Buffers<'a> {
         Ok(Buffers {
             welded: arena.take(corner_count)?,
             source: arena.take(corner_count)?,
+            values: arena.take(corner_count)?,
             attributes: arena.take(corner_count)?,
             slots: arena.take(vertex_count)?,
             table: arena.take((2 * vertex_count + 2).max(corner_count))?,
@@ -128,7 +131,7 @@ fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScr
 }
 
 /// Bytes of working memory a call needs; `None` on overflow. The layout's sum, which the header
-/// states as `53 C + 216 T + 4 V + 4 max(2 V + 2, C) + 72` (checked by a test).
+/// states as `57 C + 216 T + 4 V + 4 max(2 V + 2, C) + 75` (checked by a test).
 pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
     if vertex_count == 0 && corner_count == 0 {
         return Some(0);
@@ -144,9 +147,7 @@ pub(crate) fn generate_corners(
     bytes: &mut [u8],
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut arena = Arena::Carve(bytes);
-    let mut buffers = Buffers::take(&mut arena, mesh.vertex_count(), mesh.corner_count())?;
-    compute(mesh, options, &mut buffers, report)?;
+    let buffers = compute(mesh, options, bytes, report)?;
     for c in 0..mesh.corner_count() {
         output.set(c, frame(&buffers, c));
     }
@@ -162,9 +163,7 @@ pub(crate) fn generate_vertices(
     bytes: &mut [u8],
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut arena = Arena::Carve(bytes);
-    let mut buffers = Buffers::take(&mut arena, mesh.vertex_count(), mesh.corner_count())?;
-    compute(mesh, options, &mut buffers, report)?;
+    let buffers = compute(mesh, options, bytes, report)?;
     let mut out = output.whole();
     for v in 0..mesh.vertex_count() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
@@ -187,9 +186,15 @@ fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
     [x, y, z, if buffers.orientation[c] != 0 { 1.0 } else { -1.0 }]
 }
 
-/// Every corner's tangent and orientation into `buffers`, the report, and (in `slots`) every
-/// vertex's first corner. Fails before anything reaches the caller's output.
-fn compute(mesh: &Mesh, options: &Options, buffers: &mut Buffers, report: &mut Report) -> Result<(), Error> {
+/// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
+/// (in `slots`) every vertex's first corner. Fails before anything reaches the caller's output.
+fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut Report) -> Result<Buffers<'a>, Error> {
+    if mesh.vertex_count() == 0 && mesh.corner_count() == 0 {
+        // Nothing to read or write; no scratch was asked for.
+        *report = Report::default();
+        return Buffers::take(&mut Arena::Count(0), 0, 0);
+    }
+    let mut buffers = Buffers::take(&mut Arena::Carve(bytes), mesh.vertex_count(), mesh.corner_count())?;
     let (vertex_count, corner_count) = (mesh.vertex_count(), mesh.corner_count());
     if vertex_count > MAX_COUNT || corner_count > MAX_COUNT {
         return Err(Error::SizeOverflow);
@@ -216,15 +221,15 @@ fn compute(mesh: &Mesh, options: &Options, buffers: &mut Buffers, report: &mut R
     buffers.tangents.fill([1.0, 0.0, 0.0]);
     buffers.orientation.fill(0);
     if corner_count > 0 {
-        solve(&attributes, options.threads, buffers, report)?;
+        solve(&attributes, options.threads, &mut buffers, report)?;
     }
     // 4. Policies other than LEGACY replace what no frame can be; then per-vertex counts.
     if options.degenerate_policy != DegeneratePolicy::Legacy {
         repair::repair(mesh, options.degenerate_policy, buffers.tangents, buffers.slots, report);
         report.abnormal_normals = resolve::count_abnormal_normals(mesh);
     }
-    count_vertices(mesh, buffers, report);
-    Ok(())
+    count_vertices(mesh, &mut buffers, report);
+    Ok(buffers)
 }
 
 /// Steps 5 to 11: mikktspace.c proper.
@@ -234,7 +239,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
     // 5. Weld corners equal in position, normal and texture coordinate
     //    (GenerateSharedVerticesIndexList).
-    let welded_count = weld::weld(attributes, b.welded, b.source, b.slots, b.table);
+    let welded_count = weld::weld(attributes, b.welded, b.source, b.values);
     for (packed, &vertex) in b.attributes.iter_mut().zip(&b.source[..welded_count]) {
         *packed = attributes.key(vertex);
     }
@@ -274,7 +279,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         let mut edges = edge_scratch(&mut phase, corner_count)?;
         let used = welded_count + 1;
         edges.starts = &mut edges.starts[..used];
-        neighbors::pair_edges(ids, &mut b.neighbors[..good], edges);
+        neighbors::pair_edges(ids, &b.values[..welded_count], &mut b.neighbors[..good], edges);
     }
 
     // 9. Orientation-preserving groups around each welded vertex (Build4RuleGroups).
@@ -394,7 +399,7 @@ mod tests {
     fn scratch_bytes_follow_the_documented_formula() {
         for (v, c) in [(1, 3), (3, 3), (4, 6), (100, 30), (10, 300), (1000, 5994), (7, 0)] {
             let t = c / 3;
-            let formula = 53 * c + 216 * t + 4 * v + 4 * (2 * v + 2).max(c) + 72;
+            let formula = 57 * c + 216 * t + 4 * v + 4 * (2 * v + 2).max(c) + 75;
             assert_eq!(scratch_bytes(v, c), Some(formula), "{v} vertices, {c} corners");
         }
         assert_eq!(scratch_bytes(0, 0), Some(0));

@@ -1,12 +1,16 @@
-//! Which good triangle lies across each edge (`BuildNeighborsFast`), in linear time.
+//! Which good triangle lies across each edge (`BuildNeighborsFast`).
 //!
-//! mikktspace.c sorts every edge by (smaller welded vertex, larger welded vertex, triangle) and
-//! walks the sorted list: each edge not yet paired takes the first later edge of the same two
-//! vertices that runs the other way and is not yet paired. Within one pair of vertices that is the
-//! k-th edge running one way paired with the k-th running the other way, in triangle order (an
-//! edge left unpaired when it is walked meets no opposite edge after it, so every opposite edge
-//! before a later one is already taken). Here the edges are bucketed by their smaller vertex in
-//! triangle order, and a queue per larger vertex pairs them as they come.
+//! mikktspace.c sorts every edge by its smaller welded index `i0`, then each run of equal `i0` by
+//! the larger `i1`, then each run of equal `(i0, i1)` by triangle, and walks the list: each edge
+//! not yet paired takes the first later edge of the same run that runs the other way and is not
+//! yet paired. In a sorted run that is the k-th edge running one way paired with the k-th running
+//! the other way, in triangle order (an edge left unpaired when it is walked meets no opposite
+//! edge after it, so every opposite edge before a later one is already taken); here a queue per
+//! pair of welded vertices pairs them as they come, in linear time. But the C's loops sort a run
+//! only when the next one begins, so the last run of `i0` is never sorted by `i1`, nor the last
+//! run of `(i0, i1)` by triangle: the edges of the largest `i0` keep the order the first quicksort
+//! left them in, and pair as they lie. Those are replayed exactly: the quicksort with its seed,
+//! along the parts that hold them, and the walk over them.
 #![forbid(unsafe_code)]
 
 use super::NONE;
@@ -23,8 +27,9 @@ pub(crate) struct EdgeScratch<'a> {
 }
 
 /// Writes `neighbors[g][k]`: the good triangle across edge `k` (from corner `k` to `k + 1`) of good
-/// triangle `g`, or [`NONE`]. `ids[g]` are the welded vertices of good triangle `g`.
-pub(crate) fn pair_edges(ids: &[[u32; 3]], neighbors: &mut [[u32; 3]], scratch: EdgeScratch) {
+/// triangle `g`, or [`NONE`]. `ids[g]` are the welded vertices of good triangle `g`, `values[id]`
+/// mikktspace.c's index for welded vertex `id`.
+pub(crate) fn pair_edges(ids: &[[u32; 3]], values: &[u32], neighbors: &mut [[u32; 3]], scratch: EdgeScratch) {
     let EdgeScratch {
         starts,
         entries,
@@ -33,37 +38,72 @@ pub(crate) fn pair_edges(ids: &[[u32; 3]], neighbors: &mut [[u32; 3]], scratch: 
         tail,
         stamp,
     } = scratch;
-    let ends = |g: usize, k: usize| (ids[g][k], ids[g][(k + 1) % 3]);
+    let ends = |edge: u32| {
+        let (g, k) = (edge as usize / 3, edge as usize % 3);
+        (ids[g][k], ids[g][(k + 1) % 3])
+    };
+    let smaller_value = |edge: u32| {
+        let (a, b) = ends(edge);
+        values[a as usize].min(values[b as usize])
+    };
+    let larger_value = |edge: u32| {
+        let (a, b) = ends(edge);
+        values[a as usize].max(values[b as usize])
+    };
+    neighbors.fill([NONE; 3]);
+    let edge_count = 3 * ids.len();
+    if edge_count == 0 {
+        return;
+    }
 
-    // Edges bucketed by their smaller welded vertex, in triangle order within a bucket.
-    starts.fill(0);
-    for g in 0..ids.len() {
-        for k in 0..3 {
-            let (a, b) = ends(g, k);
-            starts[a.min(b) as usize + 1] += 1;
+    // 1. The edges of the largest i0, in the order mikktspace.c walks them.
+    let last = (0..edge_count as u32).map(smaller_value).max().unwrap_or(0);
+    let order = &mut entries[..edge_count];
+    let keys = &mut next[..edge_count];
+    for (edge, (slot, key)) in (0u32..).zip(order.iter_mut().zip(keys.iter_mut())) {
+        *slot = edge;
+        *key = smaller_value(edge);
+    }
+    quicksort_toward(keys, order, last);
+    let first_of_last = keys.iter().rposition(|&key| key != last).map_or(0, |p| p + 1);
+    let run = &mut order[first_of_last..];
+    // The third pass sorts each run of equal i1 by triangle, all but the very last one.
+    let mut start = 0;
+    for i in 1..run.len() {
+        if larger_value(run[i]) != larger_value(run[start]) {
+            run[start..i].sort_unstable();
+            start = i;
         }
+    }
+    walk(run, &ends, &larger_value, neighbors);
+
+    // 2. Every other edge: bucketed by its smaller welded vertex, in triangle order within a bucket.
+    let in_last_run = |edge: u32| smaller_value(edge) == last;
+    starts.fill(0);
+    for edge in 0..edge_count as u32 {
+        let (a, b) = ends(edge);
+        starts[a.min(b) as usize + 1] += u32::from(!in_last_run(edge));
     }
     for v in 1..starts.len() {
         starts[v] += starts[v - 1];
     }
-    for g in 0..ids.len() {
-        for k in 0..3 {
-            let (a, b) = ends(g, k);
-            let slot = &mut starts[a.min(b) as usize];
-            entries[*slot as usize] = (3 * g + k) as u32;
-            *slot += 1;
+    for edge in 0..edge_count as u32 {
+        if in_last_run(edge) {
+            continue;
         }
+        let (a, b) = ends(edge);
+        let slot = &mut starts[a.min(b) as usize];
+        entries[*slot as usize] = edge;
+        *slot += 1;
     }
     // `starts[v]` now ends bucket v, so bucket v begins at `starts[v - 1]`.
 
-    neighbors.fill([NONE; 3]);
     stamp.fill(NONE);
     let mut begin = 0usize;
     for (smaller, &end) in starts[..starts.len() - 1].iter().enumerate() {
         let end = end as usize;
         for &edge in &entries[begin..end] {
-            let (g, k) = (edge as usize / 3, edge as usize % 3);
-            let (a, b) = ends(g, k);
+            let (a, b) = ends(edge);
             let larger = a.max(b) as usize;
             let forward = a < b;
             if stamp[larger] != smaller as u32 {
@@ -72,14 +112,12 @@ pub(crate) fn pair_edges(ids: &[[u32; 3]], neighbors: &mut [[u32; 3]], scratch: 
             }
             let waiting = head[larger];
             let waiting_forward = waiting != NONE && {
-                let (wa, wb) = ends(waiting as usize / 3, waiting as usize % 3);
+                let (wa, wb) = ends(waiting);
                 wa < wb
             };
             if waiting != NONE && waiting_forward != forward {
                 head[larger] = next[waiting as usize];
-                let (h, hk) = (waiting as usize / 3, waiting as usize % 3);
-                neighbors[h][hk] = g as u32;
-                neighbors[g][k] = h as u32;
+                pair(neighbors, waiting, edge);
             } else {
                 next[edge as usize] = NONE;
                 if waiting == NONE {
@@ -91,5 +129,80 @@ pub(crate) fn pair_edges(ids: &[[u32; 3]], neighbors: &mut [[u32; 3]], scratch: 
             }
         }
         begin = end;
+    }
+}
+
+/// Records the triangles of edges `a` and `b` as neighbours across them.
+fn pair(neighbors: &mut [[u32; 3]], a: u32, b: u32) {
+    let (ga, ka, gb, kb) = (a as usize / 3, a as usize % 3, b as usize / 3, b as usize % 3);
+    neighbors[ga][ka] = gb as u32;
+    neighbors[gb][kb] = ga as u32;
+}
+
+/// mikktspace.c's `QuickSortEdges` on `keys` (carrying `edges` along), seed and pivots as in the C,
+/// but only into the parts that hold a key `last`: where those edges end up, and in what order,
+/// depends on nothing else.
+fn quicksort_toward(keys: &mut [u32], edges: &mut [u32], last: u32) {
+    const SEED: u32 = 39_871_946;
+    let mut parts = vec![(0usize, keys.len() - 1, SEED)];
+    while let Some((left, right, seed)) = parts.pop() {
+        let count = right - left + 1;
+        if count < 2 || !keys[left..=right].contains(&last) {
+            continue;
+        }
+        if count == 2 {
+            if keys[left] > keys[right] {
+                keys.swap(left, right);
+                edges.swap(left, right);
+            }
+            continue;
+        }
+        let seed = seed.wrapping_add(seed.rotate_left(seed & 31)).wrapping_add(3);
+        let pivot = keys[left + (seed as usize % count)];
+        let (mut l, mut r) = (left as isize, right as isize);
+        loop {
+            while keys[l as usize] < pivot {
+                l += 1;
+            }
+            while keys[r as usize] > pivot {
+                r -= 1;
+            }
+            if l <= r {
+                keys.swap(l as usize, r as usize);
+                edges.swap(l as usize, r as usize);
+                l += 1;
+                r -= 1;
+            }
+            if l > r {
+                break;
+            }
+        }
+        if (left as isize) < r {
+            parts.push((left, r as usize, seed));
+        }
+        if (l as usize) < right {
+            parts.push((l as usize, right, seed));
+        }
+    }
+}
+
+/// mikktspace.c's pairing walk over `run`, edges as they lie: each edge not yet paired takes the
+/// first later edge, contiguous with it and of the same two welded vertices, that runs the other
+/// way and is not yet paired.
+fn walk(run: &[u32], ends: &dyn Fn(u32) -> (u32, u32), larger_value: &dyn Fn(u32) -> u32, neighbors: &mut [[u32; 3]]) {
+    for (i, &edge) in run.iter().enumerate() {
+        if neighbors[edge as usize / 3][edge as usize % 3] != NONE {
+            continue;
+        }
+        let (start, end) = ends(edge);
+        for &other in &run[i + 1..] {
+            if larger_value(other) != larger_value(edge) {
+                break;
+            }
+            if ends(other) == (end, start) && neighbors[other as usize / 3][other as usize % 3] == NONE {
+                pair(neighbors, edge, other);
+                break;
+            }
+        }
     }
 }

@@ -1,114 +1,29 @@
 //! Welding corners: mikktspace.c treats corners whose position, normal and texture coordinate
 //! compare equal with `==` as one vertex (`GenerateSharedVerticesIndexList`).
 //!
-//! Which corners weld is all that matters downstream, plus the bits of the corner each welded
-//! vertex reads its attributes from. mikktspace.c finds equal corners by sorting them into a grid
-//! and splitting cells at the midpoint of their widest axis (`MergeVertsFast`); each welded vertex
-//! then reads the corner that comes first in the order that splitting leaves. When every position
-//! is finite and small enough for the midpoints not to overflow, that splitting never separates
-//! equal corners, so the welded sets are exactly the classes of `==`, found here by hashing each
-//! vertex once. Two things make the grid's order visible, and then [`weld_exactly`] replays it:
-//! equal corners whose bits differ (a `-0.0` against a `+0.0`: which one is read changes later
-//! signs of zero), and non-finite or huge positions, where a cell whose midpoint is not finite is
-//! left unwelded.
+//! mikktspace.c finds equal corners by sorting them into a grid along the widest axis of their
+//! bounding box and splitting each cell at the midpoint of its widest extent until a part holds one
+//! value (`MergeVertsFast`); each corner then takes the index of the first equal corner in the order
+//! that splitting leaves. That order is visible downstream: the representative's bits are read
+//! (a `-0.0` against a `+0.0`), a cell whose midpoint is not finite is left unwelded, and the
+//! representative's index decides which edges end mikktspace.c's edge sort (see `neighbors`). So
+//! the splitting is replayed step by step, its recursion on a stack and its final quadratic
+//! search replaced by a sort.
 #![forbid(unsafe_code)]
 
 use super::attributes::Attributes;
 use super::vector::Vec3;
 use super::NONE;
 
-/// Positions below this magnitude (2^126) keep every midpoint `0.5 * (max + min)` finite.
-const SAFE_MAGNITUDE: f32 = 8.507_059e37;
-
 /// mikktspace.c's grid: cells along the widest axis of the bounding box.
 const GRID_CELLS: usize = 2048;
 
-/// A vertex holding `NaN` in its normal or texture coordinate: equal to nothing, not even itself,
-/// so each corner that uses it is a welded vertex of its own.
-const LONELY: u32 = NONE - 1;
-
 /// Replaces the vertex of every corner in `corners` (indices already checked) by the number of its
-/// welded vertex, numbered in order of first use, and writes the vertex each welded vertex reads
-/// its attributes from to `source`. Returns the number of welded vertices.
-///
-/// `slots` holds one word per vertex and `table` at least two; both are overwritten.
-pub(crate) fn weld(
-    attributes: &Attributes,
-    corners: &mut [u32],
-    source: &mut [u32],
-    slots: &mut [u32],
-    table: &mut [u32],
-) -> usize {
-    if !weld_by_hash(attributes, corners, slots, table) {
-        return weld_exactly(attributes, corners, source);
-    }
-    // Number the classes in order of first use; `table` now maps a class's vertex to its number.
-    table.fill(NONE);
-    let mut count = 0u32;
-    for vertex in corners.iter_mut() {
-        let class = slots[*vertex as usize];
-        let id = if class == LONELY {
-            source[count as usize] = *vertex;
-            count += 1;
-            count - 1
-        } else {
-            if table[class as usize] == NONE {
-                table[class as usize] = count;
-                source[count as usize] = class;
-                count += 1;
-            }
-            table[class as usize]
-        };
-        *vertex = id;
-    }
-    count as usize
-}
-
-/// The fast path: each used vertex hashed once by its eight floats (+0 and -0 hashed alike);
-/// `slots[v]` becomes the first vertex of its class (or [`LONELY`]). Returns false when the grid's
-/// order would show (see the module comment) and nothing may be concluded.
-fn weld_by_hash(attributes: &Attributes, corners: &[u32], slots: &mut [u32], table: &mut [u32]) -> bool {
-    const USED: u32 = NONE - 2;
-    slots.fill(NONE);
-    for &vertex in corners {
-        slots[vertex as usize] = USED;
-    }
-    table.fill(NONE);
-    for v in 0..slots.len() as u32 {
-        if slots[v as usize] != USED {
-            continue;
-        }
-        let key = attributes.key(v);
-        if !key[..3].iter().all(|p| p.abs() < SAFE_MAGNITUDE) {
-            return false;
-        }
-        if key.iter().any(|x| x.is_nan()) {
-            slots[v as usize] = LONELY;
-            continue;
-        }
-        let canonical = key.map(canonical_bits);
-        let mut slot = bucket(&canonical, table.len());
-        loop {
-            let other = table[slot];
-            if other == NONE {
-                table[slot] = v;
-                slots[v as usize] = v;
-                break;
-            }
-            let other_key = attributes.key(other);
-            if other_key.map(canonical_bits) == canonical {
-                if other_key.map(f32::to_bits) != key.map(f32::to_bits) {
-                    // Equal under `==` but not bit for bit: which one mikktspace.c reads depends
-                    // on the grid's order.
-                    return false;
-                }
-                slots[v as usize] = other;
-                break;
-            }
-            slot = if slot + 1 == table.len() { 0 } else { slot + 1 };
-        }
-    }
-    true
+/// welded vertex, numbered in order of first use; writes, per welded vertex, the vertex it reads its
+/// attributes from to `source` and mikktspace.c's index for it (`4 * face + corner` of the corner
+/// that represents it) to `values`. Returns the number of welded vertices.
+pub(crate) fn weld(attributes: &Attributes, corners: &mut [u32], source: &mut [u32], values: &mut [u32]) -> usize {
+    weld_exactly(attributes, corners, source, values)
 }
 
 /// The bits of `x`, with -0 as +0 so that values equal under `==` have equal bits.
@@ -119,16 +34,6 @@ fn canonical_bits(x: f32) -> u32 {
     } else {
         x.to_bits()
     }
-}
-
-/// Where a key starts its search in a table of `len` slots.
-#[inline(always)]
-fn bucket(key: &[u32; 8], len: usize) -> usize {
-    let mut hash = 0u64;
-    for &word in key {
-        hash = (hash ^ u64::from(word)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    }
-    (((hash >> 32) * len as u64) >> 32) as usize
 }
 
 /// A corner in a grid cell, as `STmpVert`: its position and its number.
@@ -142,7 +47,7 @@ struct CellEntry {
 /// each cell split at midpoints until a part's widest extent is one value, then each corner of
 /// such a part welded to the first equal corner before it. Allocates its own memory (it runs only
 /// for the inputs the module comment names). Returns the number of welded vertices.
-fn weld_exactly(attributes: &Attributes, corners: &mut [u32], source: &mut [u32]) -> usize {
+fn weld_exactly(attributes: &Attributes, corners: &mut [u32], source: &mut [u32], values: &mut [u32]) -> usize {
     let corner_count = corners.len();
     let position = |c: usize| attributes.position(corners[c]);
     let mut representative: Vec<u32> = (0..corner_count as u32).collect();
@@ -202,6 +107,7 @@ fn weld_exactly(attributes: &Attributes, corners: &mut [u32], source: &mut [u32]
         if number[first] == NONE {
             number[first] = count;
             source[count as usize] = corners[first];
+            values[count as usize] = (4 * (first / 3) + first % 3) as u32;
             count += 1;
         }
     }
