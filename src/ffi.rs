@@ -528,7 +528,7 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 ///   call keeps each vertex's frames in its sums);
 /// - `TBASIS_METHOD_MIKKTSPACE`: with `C` corners (`index_count`, or `vertex_count` when
 ///   unindexed), `T = C / 3` triangles and `V = vertex_count`:
-///   `57*C + 216*T + 4*V + 4*max(2*V + 2, C) + 75` (about 130 bytes per corner).
+///   `57*C + 216*T + 4*V + 4*max(2*V + 2, C) + 75` (about 130 bytes per corner), 0 when `V` is 0.
 ///
 /// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
 /// `options` may be NULL (the defaults).

@@ -464,8 +464,14 @@ fn decode_plan(input: &mut Input) -> Plan {
         normals_stride: 0,
         texcoords: ptr::null(),
         texcoords_stride: 0,
-        indices: ptr::null(),
-        index_count: 0,
+        // Only the counts matter (method MIKKTSPACE's size depends on the index count); the
+        // pointer is never read.
+        indices: if bufs[IDX].null {
+            ptr::null()
+        } else {
+            ptr::NonNull::<u32>::dangling().as_ptr().cast()
+        },
+        index_count: bufs[IDX].count,
         index_type: 0,
     };
     // The size for these options (it may depend on them), and for NULL options (documented).
@@ -847,7 +853,10 @@ fn expect_generate(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Expect
     }
     if !b[UV].null {
         hard |= b[UV].violations();
-    } else if plan.effective_policy() == TBASIS_DEGENERATE_LEGACY {
+    } else if plan.effective_policy() == TBASIS_DEGENERATE_LEGACY
+        || (!plan.options_null && plan.method == TBASIS_METHOD_MIKKTSPACE)
+    {
+        // The listing and mikktspace.c both need texture coordinates.
         hard |= bit(TBASIS_ERROR_NULL_POINTER);
     }
     if !b[BIT].null {
@@ -1198,7 +1207,13 @@ fn check_generate(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8]) {
     if let (true, Some(r)) = (debugging(), report) {
         eprintln!("report: {}", describe_report(&r));
     }
-    if ok {
+    if ok && plan.method == TBASIS_METHOD_MIKKTSPACE {
+        // Its bits are mikktspace.c's, checked against it by tests/mikktspace.rs; here only that
+        // caller scratch changes nothing.
+        if plan.uses_scratch() && plan.vertex_count > 0 {
+            check_without_scratch(plan, &before, arena, &report_bytes);
+        }
+    } else if ok {
         let triangles = triangles_of(plan, &before);
         if let Some(report) = report {
             check_report(plan, status, &report, &triangles, &before);

@@ -133,8 +133,12 @@ fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScr
 /// Bytes of working memory a call needs; `None` on overflow. The layout's sum, which the header
 /// states as `57 C + 216 T + 4 V + 4 max(2 V + 2, C) + 75` (checked by a test).
 pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
-    if vertex_count == 0 && corner_count == 0 {
+    if vertex_count == 0 {
+        // Every index is out of range, or there are none: nothing to work on.
         return Some(0);
+    }
+    if vertex_count > MAX_COUNT || corner_count > MAX_COUNT {
+        return None;
     }
     bytes_of(|a| Buffers::take(a, vertex_count, corner_count).map(|_| ())).ok()
 }
@@ -189,8 +193,11 @@ fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
 /// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
 /// (in `slots`) every vertex's first corner. Fails before anything reaches the caller's output.
 fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut Report) -> Result<Buffers<'a>, Error> {
-    if mesh.vertex_count() == 0 && mesh.corner_count() == 0 {
-        // Nothing to read or write; no scratch was asked for.
+    if mesh.vertex_count() == 0 {
+        // No scratch was asked for: any index is out of range, or there is nothing to do.
+        if mesh.corner_count() > 0 {
+            return Err(Error::IndexOutOfRange);
+        }
         *report = Report::default();
         return Buffers::take(&mut Arena::Count(0), 0, 0);
     }
@@ -403,6 +410,8 @@ mod tests {
             assert_eq!(scratch_bytes(v, c), Some(formula), "{v} vertices, {c} corners");
         }
         assert_eq!(scratch_bytes(0, 0), Some(0));
+        assert_eq!(scratch_bytes(0, 3), Some(0));
         assert_eq!(scratch_bytes(usize::MAX / 8, 3), None);
+        assert_eq!(scratch_bytes(3, usize::MAX), None);
     }
 }

@@ -11,8 +11,9 @@ use crate::accumulate;
 use crate::frame::{fallback_tangent, NO_NORMAL_TANGENT};
 use crate::mesh::Mesh;
 use crate::options::{DegeneratePolicy, Method, Options};
+use crate::report::count_flags;
 use crate::report::Report;
-use crate::resolve::VertexNormal;
+use crate::resolve::{count_abnormal_normals, VertexNormal};
 use crate::scratch::OwnedScratch;
 use crate::status::Error;
 
@@ -28,10 +29,13 @@ pub(crate) fn reject_degenerate(mesh: &Mesh, options: &Options, report: &mut Rep
         method: Method::Angle,
         ..*options
     };
-    let found = accumulate::accumulate(mesh, &robust, &mut owned.scratch())?;
+    let mut scratch = owned.scratch();
+    let mut found = accumulate::accumulate(mesh, &robust, &mut scratch)?;
     if found.degenerate_triangles > 0 {
-        report.degenerate_triangles = found.degenerate_triangles;
-        report.first_degenerate_triangle = found.first_degenerate_triangle;
+        // The report every method's REJECT gives.
+        count_flags(scratch.flags, &mut found);
+        found.abnormal_normals = count_abnormal_normals(mesh);
+        *report = found;
         return Err(Error::DegenerateUv);
     }
     Ok(())
