@@ -194,13 +194,29 @@ fn partition(part: &mut [CellEntry], axis: usize, separator: f32) -> (usize, usi
 /// of the first corner before it, in the part's order, that equals it in all eight floats. Sorting
 /// by (canonical key, position) finds those first corners without the C's quadratic search.
 fn weld_run(attributes: &Attributes, corners: &[u32], part: &[CellEntry], representative: &mut [u32]) {
+    /// Up to this many corners (a vertex's few corners, the usual case) the C's own search is
+    /// cheaper than sorting.
+    const SEARCH_LIMIT: usize = 16;
+    let key = |entry: &CellEntry| {
+        let key = attributes.key(corners[entry.corner as usize]);
+        (!key.iter().any(|x| x.is_nan())).then(|| key.map(canonical_bits))
+    };
+    if part.len() <= SEARCH_LIMIT {
+        let mut keys = [None; SEARCH_LIMIT];
+        for (at, entry) in part.iter().enumerate() {
+            keys[at] = key(entry);
+            if keys[at].is_some() {
+                if let Some(first) = (0..at).find(|&before| keys[before] == keys[at]) {
+                    representative[entry.corner as usize] = part[first].corner;
+                }
+            }
+        }
+        return;
+    }
     let mut order: Vec<(usize, [u32; 8])> = part
         .iter()
         .enumerate()
-        .filter_map(|(at, entry)| {
-            let key = attributes.key(corners[entry.corner as usize]);
-            (!key.iter().any(|x| x.is_nan())).then(|| (at, key.map(canonical_bits)))
-        })
+        .filter_map(|(at, entry)| key(entry).map(|key| (at, key)))
         .collect();
     order.sort_unstable_by(|a, b| a.1.cmp(&b.1).then(a.0.cmp(&b.0)));
     for run in order.chunk_by(|a, b| a.1 == b.1) {
