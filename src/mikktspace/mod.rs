@@ -172,14 +172,21 @@ pub(crate) fn generate_vertices(
     for v in 0..mesh.vertex_count() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
         let first = buffers.slots[v];
+        let unit = resolve::VertexNormal::new(normal.to_array()).unit;
         let (tangent, w) = if first == NONE {
             report.fallback_vertices += 1;
-            resolve::fallback(resolve::VertexNormal::new(normal.to_array()).unit)
+            resolve::fallback(unit)
         } else {
             let [x, y, z, w] = frame(&buffers, first as usize);
             (GlamVec3::new(x, y, z), w)
         };
-        out.write(v, tangent, w, normal);
+        // LEGACY keeps the caller's normal as given; the other policies promise a unit bitangent,
+        // so they use the normalized normal (or, without one, a direction across the tangent).
+        let across = match options.degenerate_policy {
+            DegeneratePolicy::Legacy => normal,
+            _ => unit.unwrap_or_else(|| crate::frame::fallback_tangent(tangent)),
+        };
+        out.write(v, tangent, w, across);
     }
     Ok(())
 }
