@@ -857,7 +857,7 @@ fn main() {
 
     let mut md = String::from(
         "# Benchmark\n\n\
-         Reproduce (about 2 minutes on 2 cores; prints the tables and writes this file):\n\n",
+         Reproduce (about 3 to 4 minutes on 2 cores; prints the tables and writes this file):\n\n",
     );
     writeln!(md, "```text\n{COMMAND}\n```\n").unwrap();
     writeln!(

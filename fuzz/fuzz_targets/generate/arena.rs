@@ -1,7 +1,7 @@
 //! Buffers inside a byte arena the harness owns: where they are, what the header says about them,
 //! and reading and writing their elements.
 
-use tbasis::ffi::tbasis_status;
+use tbasis::ffi::{tbasis_status, TBASIS_ERROR_INVALID_STRIDE, TBASIS_ERROR_NULL_POINTER, TBASIS_ERROR_SIZE_OVERFLOW};
 
 use crate::input::{vector, Encoding, Input};
 
@@ -91,7 +91,7 @@ pub fn bit(status: tbasis_status) -> u32 {
     1u32 << status.min(31)
 }
 
-pub fn put_f32(bytes: &mut [u8], at: usize, value: f32) {
+fn put_f32(bytes: &mut [u8], at: usize, value: f32) {
     bytes[at..at + 4].copy_from_slice(&value.to_le_bytes());
 }
 

@@ -1,9 +1,28 @@
-pub const REPORT_BYTES: usize = size_of::<tbasis_report>();
+//! One call through the C ABI, `tbasis_generate` or `tbasis_generate_corners`, made from a plan
+//! and checked: the status against what the inputs call for, every byte the call could touch,
+//! the report, then (on success) the outputs.
+
+use core::ffi::{c_void, CStr};
+use core::mem::size_of;
+use core::ptr;
+
+use tbasis::ffi::*;
+
+use crate::arena::{bit, first_change_outside, vec_at, Buf};
+use crate::frames::length;
+use crate::outputs::{check_corner_outputs, check_vertex_outputs};
+use crate::packed::Packed;
+use crate::plan::{
+    assert_harness_sound, describe, read_indices, triangles_of, Footprints, Plan, ARENA, BIT, IDX, NAMES, NRM, POS,
+    TAN, UV,
+};
+
+const REPORT_BYTES: usize = size_of::<tbasis_report>();
 
 /// The report goes at an unaligned offset inside a larger buffer, to catch writes beside it.
-pub const REPORT_BUFFER: usize = REPORT_BYTES + 16;
+const REPORT_BUFFER: usize = REPORT_BYTES + 16;
 
-pub const REPORT_FILL: u8 = 0x5a;
+const REPORT_FILL: u8 = 0x5a;
 
 /// The statuses the inputs call for: `hard` are certain errors, `soft` are ones the header is
 /// ambiguous about (the call may also succeed).
@@ -12,7 +31,7 @@ pub struct Expect {
     pub soft: u32,
 }
 
-pub fn expect_generate(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Expect {
+fn expect_call(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Expect {
     let mut hard = 0;
     let mut soft = 0;
     if plan.mesh_null || plan.output_null {
@@ -38,13 +57,14 @@ pub fn expect_generate(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Ex
     let b = &plan.bufs;
     let vc = plan.vertex_count;
     hard |= b[POS].violations() | b[NRM].violations() | b[TAN].violations();
-    // The header lists `output->tangents` as required; with no vertices the call may accept NULL.
-    if b[TAN].null && vc == 0 {
+    // The header lists the tangents as required; with no elements the call may accept NULL.
+    if b[TAN].null && plan.outputs() == 0 {
         soft |= bit(TBASIS_ERROR_NULL_POINTER);
     }
     if !b[UV].null {
         hard |= b[UV].violations();
-    } else if plan.effective_policy() == TBASIS_DEGENERATE_LEGACY {
+    } else if plan.resolved_policy() == TBASIS_DEGENERATE_LEGACY || plan.mikktspace() {
+        // The listing and mikktspace.c both need texture coordinates.
         hard |= bit(TBASIS_ERROR_NULL_POINTER);
     }
     if !b[BIT].null {
@@ -89,7 +109,7 @@ pub fn expect_generate(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Ex
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
-pub enum Field {
+enum Field {
     Method,
     Policy,
     Flags,
@@ -98,7 +118,7 @@ pub enum Field {
 /// Whether the library knows this method, policy or flags value. The set of codes grows with the
 /// library, so it is asked once per value (a call on an empty mesh with only that field set);
 /// the values the header has always defined must be known.
-pub fn known(field: Field, value: u32) -> bool {
+fn known(field: Field, value: u32) -> bool {
     use std::sync::atomic::{AtomicU8, Ordering};
     const CACHED: usize = 64;
     static CACHE: [[AtomicU8; CACHED]; 3] = [const { [const { AtomicU8::new(0) }; CACHED] }; 3];
@@ -154,7 +174,7 @@ pub fn known(field: Field, value: u32) -> bool {
         ["method", "policy", "flags"][row]
     );
     let documented = match field {
-        Field::Method => value <= TBASIS_METHOD_LENGYEL,
+        Field::Method => value <= TBASIS_METHOD_MIKKTSPACE,
         Field::Policy => value <= TBASIS_DEGENERATE_REJECT,
         Field::Flags => value & !TBASIS_FLAG_FLIP_V == 0,
     };
@@ -169,14 +189,9 @@ pub fn known(field: Field, value: u32) -> bool {
     status == TBASIS_OK
 }
 
-/// Makes one `tbasis_generate` call with the plan's descriptors built over `arena`; the report
-/// buffer comes back whole.
-pub fn call_generate(
-    plan: &Plan,
-    arena: &mut [u8],
-    scratch_arena: &mut [u8],
-    with_scratch: bool,
-) -> (tbasis_status, Vec<u8>) {
+/// Makes the plan's call with its descriptors built over `arena`; the report buffer comes back
+/// whole.
+fn call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], with_scratch: bool) -> (tbasis_status, Vec<u8>) {
     let arena_ptr = arena.as_mut_ptr();
     let scratch_ptr = scratch_arena.as_mut_ptr();
     // SAFETY: every base is below the arena length (clamped), so `add` stays in the allocation.
@@ -237,17 +252,24 @@ pub fn call_generate(
         ptr::write_unaligned(options_ptr, options);
         ptr::write_unaligned(output_ptr, output);
         let report_ptr = report_bytes.as_mut_ptr().add(ro).cast::<tbasis_report>();
-        tbasis_generate(
-            if plan.mesh_null { ptr::null() } else { mesh_ptr },
-            if plan.options_null { ptr::null() } else { options_ptr },
-            if plan.output_null { ptr::null() } else { output_ptr },
-            if plan.report_null { ptr::null_mut() } else { report_ptr },
-        )
+        let mesh = if plan.mesh_null { ptr::null() } else { mesh_ptr };
+        let options = if plan.options_null { ptr::null() } else { options_ptr };
+        let report = if plan.report_null { ptr::null_mut() } else { report_ptr };
+        if plan.corners {
+            tbasis_generate_corners(mesh, options, output.tangents, output.tangents_stride, report)
+        } else {
+            tbasis_generate(
+                mesh,
+                options,
+                if plan.output_null { ptr::null() } else { output_ptr },
+                report,
+            )
+        }
     };
     (status, report_bytes)
 }
 
-pub fn check_status_string(status: tbasis_status) {
+fn check_status_string(status: tbasis_status) {
     // SAFETY: the library returns a static NUL-terminated string for every value.
     let text = unsafe { CStr::from_ptr(tbasis_status_string(status)) };
     assert!(!text.to_bytes().is_empty(), "empty status string for {status}");
@@ -283,21 +305,33 @@ pub fn debugging() -> bool {
     *DEBUG.get_or_init(|| std::env::var_os("FUZZ_DEBUG").is_some())
 }
 
-pub fn check_generate(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8]) {
+/// What a call is called in messages.
+fn name(plan: &Plan) -> &'static str {
+    if plan.corners {
+        "tbasis_generate_corners"
+    } else {
+        "tbasis_generate"
+    }
+}
+
+/// Makes the plan's call over `arena` and checks everything about it; `mesh` is the mesh as the
+/// library reads it, when it can.
+pub fn check_call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], mesh: Option<&Packed>) {
     if debugging() {
         eprintln!("{plan:#?}");
     }
     assert_harness_sound(plan);
+    let what = name(plan);
     let before = arena.to_vec();
     let scratch_before = scratch_arena.to_vec();
-    let (status, report_bytes) = call_generate(plan, arena, scratch_arena, true);
+    let (status, report_bytes) = call(plan, arena, scratch_arena, true);
 
     let footprints = Footprints::of(plan);
-    let expect = expect_generate(plan, &before, &footprints);
-    let policy = plan.effective_policy();
-    check_status(status, &expect, policy, "tbasis_generate");
+    let expect = expect_call(plan, &before, &footprints);
+    let policy = plan.resolved_policy();
+    check_status(status, &expect, policy, what);
     if debugging() {
-        eprintln!("status {status} policy {policy} vertices {}", plan.vertex_count);
+        eprintln!("{what}: status {status} policy {policy} vertices {}", plan.vertex_count);
         describe(plan, &before);
     }
 
@@ -325,7 +359,7 @@ pub fn check_generate(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8]) {
     }
     if let Some(at) = first_change_outside(&before, arena, writable) {
         panic!(
-            "tbasis_generate returned {status} and changed arena byte {at} ({:#04x} -> {:#04x}) outside its outputs",
+            "{what} returned {status} and changed arena byte {at} ({:#04x} -> {:#04x}) outside its outputs",
             before[at], arena[at]
         );
     }
@@ -334,7 +368,7 @@ pub fn check_generate(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8]) {
         let claimed_end = s.base.saturating_add(s.claimed);
         let claimed = (s.base.min(scratch_arena.len()), claimed_end.min(scratch_arena.len()));
         if let Some(at) = first_change_outside(&scratch_before, scratch_arena, vec![claimed]) {
-            panic!("tbasis_generate returned {status} and changed scratch-arena byte {at}");
+            panic!("{what} returned {status} and changed scratch-arena byte {at}");
         }
     }
 
@@ -342,28 +376,31 @@ pub fn check_generate(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8]) {
     if let (true, Some(r)) = (debugging(), report) {
         eprintln!("report: {}", describe_report(&r));
     }
-    if ok {
+    if ok || status == TBASIS_ERROR_DEGENERATE_UV {
         let triangles = triangles_of(plan, &before);
         if let Some(report) = report {
             check_report(plan, status, &report, &triangles, &before);
         }
-        check_outputs(plan, &before, arena, &triangles);
-        if plan.uses_scratch() && plan.vertex_count > 0 {
-            check_without_scratch(plan, &before, arena, &report_bytes);
-        }
-    } else if status == TBASIS_ERROR_DEGENERATE_UV {
-        if let Some(report) = report {
-            let triangles = triangles_of(plan, &before);
-            check_report(plan, status, &report, &triangles, &before);
+        if ok {
+            // The call accepted the mesh, so the harness can read it too.
+            let mesh = mesh.unwrap_or_else(|| panic!("{what} accepted a mesh the harness finds invalid"));
+            if plan.corners {
+                check_corner_outputs(plan, &before, arena, report.as_ref(), mesh);
+            } else {
+                check_vertex_outputs(plan, &before, arena, &triangles, report.as_ref(), mesh);
+            }
+            if plan.uses_scratch() && plan.outputs() > 0 {
+                check_without_scratch(plan, &before, arena, &report_bytes);
+            }
         }
     }
 }
 
 /// The same call without caller scratch must give the same bytes.
-pub fn check_without_scratch(plan: &Plan, before: &[u8], with_scratch: &[u8], report_with: &[u8]) {
+fn check_without_scratch(plan: &Plan, before: &[u8], with_scratch: &[u8], report_with: &[u8]) {
     let mut arena = before.to_vec();
     let mut unused = vec![0u8; 1];
-    let (status, report) = call_generate(plan, &mut arena, &mut unused, false);
+    let (status, report) = call(plan, &mut arena, &mut unused, false);
     assert_eq!(
         status, TBASIS_OK,
         "the call succeeds with caller scratch but not without"
@@ -372,13 +409,13 @@ pub fn check_without_scratch(plan: &Plan, before: &[u8], with_scratch: &[u8], re
         if !plan.bufs[k].placed(ARENA) {
             continue;
         }
-        for i in 0..plan.vertex_count {
+        for i in 0..plan.outputs() {
             let at = plan.bufs[k].element(i);
             let range = at..at + plan.bufs[k].size;
             assert_eq!(
                 arena[range.clone()],
                 with_scratch[range],
-                "{} of vertex {i} differ with and without caller scratch",
+                "{} {i} differ with and without caller scratch",
                 NAMES[k]
             );
         }
@@ -392,7 +429,7 @@ pub fn check_without_scratch(plan: &Plan, before: &[u8], with_scratch: &[u8], re
 }
 
 /// Checks the bytes around the report and returns its fields when the call should have filled it.
-pub fn check_report_bytes(plan: &Plan, status: tbasis_status, bytes: &[u8]) -> Option<tbasis_report> {
+fn check_report_bytes(plan: &Plan, status: tbasis_status, bytes: &[u8]) -> Option<tbasis_report> {
     let ro = plan.struct_offsets[3];
     let filled = !plan.report_null && (status == TBASIS_OK || status == TBASIS_ERROR_DEGENERATE_UV);
     let untouched = vec![REPORT_FILL; REPORT_BUFFER];
@@ -409,16 +446,16 @@ pub fn check_report_bytes(plan: &Plan, status: tbasis_status, bytes: &[u8]) -> O
 }
 
 /// The report's counts add up, and say what the header says they say.
-pub fn check_report(plan: &Plan, status: tbasis_status, report: &tbasis_report, triangles: &[[usize; 3]], arena: &[u8]) {
+fn check_report(plan: &Plan, status: tbasis_status, report: &tbasis_report, triangles: &[[usize; 3]], arena: &[u8]) {
     let vc = plan.vertex_count;
-    let policy = plan.effective_policy();
+    let policy = plan.resolved_policy();
     let mut used = vec![false; vc];
     for t in triangles {
         t.iter().for_each(|&v| used[v] = true);
     }
     let expected_unreferenced = used.iter().filter(|u| !**u).count();
     let r = report;
-    let context = format!("report ({}), status {status}, policy {policy}", describe_report(&r));
+    let context = format!("report ({}), status {status}, policy {policy}", describe_report(r));
     assert!(
         r.degenerate_triangles <= triangles.len(),
         "{context}: more degenerate triangles than triangles"
@@ -447,11 +484,34 @@ pub fn check_report(plan: &Plan, status: tbasis_status, report: &tbasis_report, 
         r.fallback_vertices.saturating_add(r.inherited_vertices) <= vc,
         "{context}: fallback + inherited"
     );
-    if policy == TBASIS_DEGENERATE_LEGACY {
-        assert_eq!(r.fallback_vertices, 0, "{context}: fallback_vertices under LEGACY");
-        assert_eq!(r.abnormal_normals, 0, "{context}: abnormal_normals under LEGACY");
+    if plan.mikktspace() {
+        // The per-vertex call gives a vertex no triangle uses the fallback frame, whatever the
+        // policy; the per-corner call has no such vertex to write.
+        let fallback = if plan.corners || status != TBASIS_OK {
+            0
+        } else {
+            expected_unreferenced
+        };
+        assert_eq!(r.fallback_vertices, fallback, "{context}: fallback_vertices");
+        assert_eq!(r.inherited_vertices, 0, "{context}: inherited_vertices");
+        let corners = 3 * triangles.len();
+        assert!(r.repaired_corners <= corners, "{context}: repaired_corners");
+        assert!(
+            r.split_vertices <= vc - expected_unreferenced,
+            "{context}: split_vertices"
+        );
+    } else {
+        assert_eq!(r.repaired_corners, 0, "{context}: repaired_corners without MIKKTSPACE");
+        assert_eq!(r.split_vertices, 0, "{context}: split_vertices without MIKKTSPACE");
     }
-    if policy != 0 && policy != TBASIS_DEGENERATE_INHERIT {
+    if policy == TBASIS_DEGENERATE_LEGACY {
+        if !plan.mikktspace() {
+            assert_eq!(r.fallback_vertices, 0, "{context}: fallback_vertices under LEGACY");
+        }
+        assert_eq!(r.abnormal_normals, 0, "{context}: abnormal_normals under LEGACY");
+        assert_eq!(r.repaired_corners, 0, "{context}: repaired_corners under LEGACY");
+    }
+    if policy != TBASIS_DEGENERATE_INHERIT {
         assert_eq!(r.inherited_vertices, 0, "{context}: inherited_vertices without INHERIT");
     }
     if status == TBASIS_ERROR_DEGENERATE_UV {
@@ -495,13 +555,16 @@ pub fn check_report(plan: &Plan, status: tbasis_status, report: &tbasis_report, 
 /// Every field of a report, for failure messages and `FUZZ_DEBUG`.
 pub fn describe_report(r: &tbasis_report) -> String {
     format!(
-        "degenerate {}, first {}, fallback {}, mirrored {}, unreferenced {}, inherited {}, abnormal {}",
+        "degenerate {}, first {}, fallback {}, mirrored {}, unreferenced {}, inherited {}, abnormal {}, \
+         repaired {}, split {}",
         r.degenerate_triangles,
         r.first_degenerate_triangle,
         r.fallback_vertices,
         r.mirrored_vertices,
         r.unreferenced_vertices,
         r.inherited_vertices,
-        r.abnormal_normals
+        r.abnormal_normals,
+        r.repaired_corners,
+        r.split_vertices
     )
 }

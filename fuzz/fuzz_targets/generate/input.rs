@@ -59,9 +59,9 @@ pub enum Encoding {
     Mixed,
 }
 
-pub const SCALES: [f32; 6] = [1e-30, 1e-20, 1e-6, 1e6, 1e20, 1e30];
+const SCALES: [f32; 6] = [1e-30, 1e-20, 1e-6, 1e6, 1e20, 1e30];
 
-pub const SPECIALS: [f32; 20] = [
+const SPECIALS: [f32; 20] = [
     0.0,
     -0.0,
     1.0,
@@ -95,11 +95,11 @@ pub fn pick_encoding(input: &mut Input) -> Encoding {
     }
 }
 
-pub fn small(input: &mut Input) -> f32 {
+fn small(input: &mut Input) -> f32 {
     f32::from(input.u8() as i8) / 8.0
 }
 
-pub fn scalar(input: &mut Input, encoding: Encoding) -> f32 {
+fn scalar(input: &mut Input, encoding: Encoding) -> f32 {
     match encoding {
         Encoding::Small | Encoding::Unit => small(input),
         Encoding::Scaled(scale) => f32::from(input.u8() as i8) * scale,

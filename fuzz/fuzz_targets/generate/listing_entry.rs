@@ -1,5 +1,20 @@
+//! `tbasis_calculate_tangent_array`, the listing's own signature (packed arrays, `long` counts),
+//! and the C port of the listing both calls are checked against.
+
+use core::ffi::c_long;
+use core::ptr;
+
+use tbasis::ffi::*;
+
+use crate::arena::{bit, fill_vectors, first_change_outside, vec_at, Buf};
+use crate::call::{check_status, Expect};
+use crate::frames::same;
+use crate::input::{index_value, pick_encoding, shuffle, Input};
+use crate::listing::listing_tangents;
+use crate::plan::MAX_VERTICES;
+
 /// Bytes of the arena of a `tbasis_calculate_tangent_array` call.
-pub const LISTING_ARENA: usize = 4 * 1024;
+const LISTING_ARENA: usize = 4 * 1024;
 
 /// Lengyel's `CalculateTangentArray` (2001) as the C port `c_tests/listing.c` computes it (linked
 /// by `fuzz/build.rs`, built with `-ffp-contract=off`), on packed copies of the inputs.
@@ -20,18 +35,15 @@ pub fn listing(
     tangents
 }
 
-pub const L_VERTEX: usize = 0;
-
-pub const L_NORMAL: usize = 1;
-
-pub const L_TEXCOORD: usize = 2;
-
-pub const L_TRIANGLE: usize = 3;
-
-pub const L_TANGENT: usize = 4;
+// Its buffers.
+const L_VERTEX: usize = 0;
+const L_NORMAL: usize = 1;
+const L_TEXCOORD: usize = 2;
+const L_TRIANGLE: usize = 3;
+const L_TANGENT: usize = 4;
 
 /// A `long` count: usually small, sometimes negative, sometimes so large every span overflows.
-pub fn long_count(input: &mut Input, small_max: u8, huge_bit: u32) -> c_long {
+fn long_count(input: &mut Input, small_max: u8, huge_bit: u32) -> c_long {
     match input.u8() % 16 {
         0 => {
             if input.rare(4) {

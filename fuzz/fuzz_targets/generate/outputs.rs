@@ -1,13 +1,50 @@
-pub fn check_outputs(plan: &Plan, before: &[u8], after: &[u8], triangles: &[[usize; 3]]) {
+//! What a successful call wrote: the per-vertex frames of `tbasis_generate` and the per-corner
+//! frames of `tbasis_generate_corners`, each against what the header promises for its method and
+//! policy.
+
+use tbasis::ffi::*;
+use tbasis::Options;
+
+use crate::arena::vec_at;
+use crate::call::describe_report;
+use crate::frames::{check_robust_tangent, cross, dot, length, same, unit, TOLERANCE};
+use crate::listing_entry::listing;
+use crate::mikktspace;
+use crate::packed::Packed;
+use crate::plan::{Plan, BIT, NRM, POS, TAN, UV};
+
+/// The options of the plan's call, as the Rust API takes them (the call succeeded: they are valid).
+fn options(plan: &Plan) -> Options {
+    if plan.options_null {
+        return Options::default();
+    }
+    Options::from_codes(plan.method, plan.policy, plan.flags, plan.threshold, plan.threads)
+        .expect("the call accepted these options")
+}
+
+/// `tbasis_generate`: LENGYEL+LEGACY has the listing's bits, MIKKTSPACE each vertex its first
+/// corner's frame, and every policy but LEGACY keeps the invariants.
+pub fn check_vertex_outputs(
+    plan: &Plan,
+    before: &[u8],
+    after: &[u8],
+    triangles: &[[usize; 3]],
+    report: Option<&tbasis_report>,
+    mesh: &Packed,
+) {
     let b = &plan.bufs;
     let vc = plan.vertex_count;
     let tangent = |i: usize| -> [f32; 4] { vec_at(after, b[TAN].element(i)) };
     let bitangent = |i: usize| -> Option<[f32; 3]> { (!b[BIT].null).then(|| vec_at(after, b[BIT].element(i))) };
     let normal = |i: usize| -> [f32; 3] { vec_at(before, b[NRM].element(i)) };
 
-    if plan.effective_policy() == TBASIS_DEGENERATE_LEGACY {
+    if plan.mikktspace() {
+        let tangents: Vec<[f32; 4]> = (0..vc).map(tangent).collect();
+        mikktspace::check_vertices(mesh, &options(plan), &tangents, report, "tbasis_generate");
+    }
+    if plan.resolved_policy() == TBASIS_DEGENERATE_LEGACY {
         // The header promises the listing's bits for method LENGYEL; FLIP_V is not the listing.
-        let listing_exact = plan.method == TBASIS_METHOD_LENGYEL && plan.flags & TBASIS_FLAG_FLIP_V == 0;
+        let listing_exact = plan.resolved_method() == TBASIS_METHOD_LENGYEL && !plan.flip_v();
         if listing_exact {
             let expected = listing(
                 vc,
@@ -42,8 +79,6 @@ pub fn check_outputs(plan: &Plan, before: &[u8], after: &[u8], triangles: &[[usi
 
     for i in 0..vc {
         let t4 = tangent(i);
-        let [x, y, z, w] = t4.map(f64::from);
-        let t = [x, y, z];
         let context = || {
             format!(
                 "vertex {i}: tangent {t4:?}, normal {:?}, bitangent {:?}",
@@ -51,38 +86,82 @@ pub fn check_outputs(plan: &Plan, before: &[u8], after: &[u8], triangles: &[[usi
                 bitangent(i)
             )
         };
-        assert!(t4.iter().all(|v| v.is_finite()), "{}: not finite", context());
-        assert!((length(t) - 1.0).abs() <= TOLERANCE, "{}: not unit length", context());
-        assert!(w == 1.0 || w == -1.0, "{}: w is not +1 or -1", context());
-        let n_hat = unit(normal(i));
-        if let Some(n) = n_hat {
-            assert!(
-                dot(t, n).abs() <= TOLERANCE,
-                "{}: not orthogonal to the normal",
-                context()
-            );
-        }
-        if let Some(b3) = bitangent(i) {
-            let bv = b3.map(f64::from);
-            assert!(b3.iter().all(|v| v.is_finite()), "{}: bitangent not finite", context());
-            match n_hat {
-                Some(n) => {
-                    let want = cross(n, t).map(|c| c * w);
-                    assert!(
-                        (0..3).all(|k| (bv[k] - want[k]).abs() <= TOLERANCE),
-                        "{}: bitangent is not w * cross(n, t)",
-                        context()
-                    );
-                }
-                None => {
-                    assert!(
-                        (length(bv) - 1.0).abs() <= TOLERANCE,
-                        "{}: bitangent not unit",
-                        context()
-                    );
-                    assert!(dot(bv, t).abs() <= TOLERANCE, "{}: bitangent not orthogonal", context());
-                }
+        check_robust_tangent(t4, normal(i), context);
+        let Some(b3) = bitangent(i) else {
+            continue;
+        };
+        let [x, y, z, w] = t4.map(f64::from);
+        let t = [x, y, z];
+        let bv = b3.map(f64::from);
+        assert!(b3.iter().all(|v| v.is_finite()), "{}: bitangent not finite", context());
+        match unit(normal(i)) {
+            Some(n) => {
+                let want = cross(n, t).map(|c| c * w);
+                assert!(
+                    (0..3).all(|k| (bv[k] - want[k]).abs() <= TOLERANCE),
+                    "{}: bitangent is not w * cross(n, t)",
+                    context()
+                );
             }
+            None => {
+                assert!(
+                    (length(bv) - 1.0).abs() <= TOLERANCE,
+                    "{}: bitangent not unit",
+                    context()
+                );
+                assert!(dot(bv, t).abs() <= TOLERANCE, "{}: bitangent not orthogonal", context());
+            }
+        }
+    }
+}
+
+/// `tbasis_generate_corners`: MIKKTSPACE gives mikktspace.c's frames (repaired where unusable,
+/// under the policies other than LEGACY); the per-vertex methods give each corner its vertex's
+/// bits from the same options' `tbasis_generate` (except the far side of a mirror fold, which the
+/// invariants cover), with the same report.
+pub fn check_corner_outputs(plan: &Plan, before: &[u8], after: &[u8], report: Option<&tbasis_report>, mesh: &Packed) {
+    let b = &plan.bufs;
+    let corners: Vec<[f32; 4]> = (0..plan.outputs()).map(|c| vec_at(after, b[TAN].element(c))).collect();
+    let normal = |c: usize| -> [f32; 3] { vec_at(before, b[NRM].element(mesh.corner_vertex(c))) };
+    let options = options(plan);
+    let what = "tbasis_generate_corners";
+    if plan.mikktspace() {
+        mikktspace::check_corners(mesh, &options, &corners, report, what);
+        return;
+    }
+    let legacy = plan.resolved_policy() == TBASIS_DEGENERATE_LEGACY;
+    if !legacy {
+        for (c, &t4) in corners.iter().enumerate() {
+            check_robust_tangent(t4, normal(c), || format!("{what}: corner {c}: tangent {t4:?}"));
+        }
+    }
+    // The same mesh and options per vertex, through the Rust API.
+    let mut vertices = vec![[f32::NAN; 4]; plan.vertex_count];
+    let mut output = tbasis::Output {
+        tangents: tbasis::StridedMut::from_slice(&mut vertices),
+        bitangents: None,
+    };
+    let vertex_report = tbasis::generate(&mesh.mesh(), &options, &mut output)
+        .unwrap_or_else(|e| panic!("{what} succeeded, tbasis::generate failed: {e:?}"));
+    let vertex_report = tbasis_report::from(vertex_report);
+    if let Some(r) = report {
+        assert_eq!(
+            describe_report(r),
+            describe_report(&vertex_report),
+            "{what}: the report differs from tbasis_generate's"
+        );
+    }
+    // Off mirror folds (and everywhere under LEGACY, which has no sides), a corner has exactly its
+    // vertex's bits.
+    if legacy || vertex_report.mirrored_vertices == 0 {
+        for (c, t) in corners.iter().enumerate() {
+            let v = mesh.corner_vertex(c);
+            assert_eq!(
+                t.map(f32::to_bits),
+                vertices[v].map(f32::to_bits),
+                "{what}: corner {c} is {t:?}, its vertex {v} has {:?}",
+                vertices[v]
+            );
         }
     }
 }

@@ -1,22 +1,30 @@
-/// Bytes of the arena holding every buffer of a `tbasis_generate` call.
+//! What one call is made of, decoded from the fuzzer's bytes: the vertex count, where each buffer
+//! sits in the arena, its stride, which pointers are NULL, the options and the caller scratch; and
+//! the rules the header gives for each of them.
+
+use core::ptr;
+
+use tbasis::ffi::*;
+
+use crate::arena::{f32_at, fill_vectors, Buf};
+use crate::call::debugging;
+use crate::input::{index_value, pick_encoding, shuffle, Encoding, Input};
+
+/// Bytes of the arena holding every buffer of a call.
 pub const ARENA: usize = 12 * 1024;
-
+/// Bytes of a caller scratch in its own arena, at most (method MIKKTSPACE asks for about 125 per
+/// corner).
+const OWN_SCRATCH_MAX: usize = 64 * 1024;
 pub const MAX_VERTICES: usize = 64;
-
 pub const MAX_TRIANGLES: usize = 96;
 
+// Buffers of a call (`tbasis_generate_corners` has no bitangents; its tangents are per corner).
 pub const POS: usize = 0;
-
 pub const NRM: usize = 1;
-
 pub const UV: usize = 2;
-
 pub const TAN: usize = 3;
-
 pub const BIT: usize = 4;
-
 pub const IDX: usize = 5;
-
 pub const NAMES: [&str; 6] = ["positions", "normals", "texcoords", "tangents", "bitangents", "indices"];
 
 /// Where the caller scratch is, if any.
@@ -45,9 +53,12 @@ impl ScratchPlan {
     }
 }
 
-/// Everything one `tbasis_generate` call is made of.
-#[derive(Debug)]
+/// Everything one `tbasis_generate` or `tbasis_generate_corners` call is made of.
+#[derive(Clone, Debug)]
 pub struct Plan {
+    /// `tbasis_generate_corners`: `bufs[TAN]` holds a frame per corner, `bufs[BIT]` is unused and
+    /// there is no output struct.
+    pub corners: bool,
     pub vertex_count: usize,
     pub bufs: [Buf; 6],
     pub index_type: u32,
@@ -71,12 +82,32 @@ pub struct Plan {
 }
 
 impl Plan {
-    pub fn effective_policy(&self) -> u32 {
-        if self.options_null {
-            0
-        } else {
-            self.policy
+    /// The method the call runs (for a known method code).
+    pub fn resolved_method(&self) -> u32 {
+        match self.method {
+            _ if self.options_null => TBASIS_METHOD_ANGLE,
+            0 => TBASIS_METHOD_ANGLE,
+            m => m,
         }
+    }
+    /// The policy the call runs: 0 is LEGACY for MIKKTSPACE, INHERIT for the other methods.
+    pub fn resolved_policy(&self) -> u32 {
+        match self.policy {
+            _ if self.options_null => TBASIS_DEGENERATE_INHERIT,
+            0 if self.resolved_method() == TBASIS_METHOD_MIKKTSPACE => TBASIS_DEGENERATE_LEGACY,
+            0 => TBASIS_DEGENERATE_INHERIT,
+            p => p,
+        }
+    }
+    pub fn mikktspace(&self) -> bool {
+        self.resolved_method() == TBASIS_METHOD_MIKKTSPACE
+    }
+    pub fn flip_v(&self) -> bool {
+        !self.options_null && self.flags & TBASIS_FLAG_FLIP_V != 0
+    }
+    /// Elements of `bufs[TAN]`: a frame per vertex, or per corner.
+    pub fn outputs(&self) -> usize {
+        self.bufs[TAN].count
     }
     pub fn index_type_valid(&self) -> bool {
         self.index_type == TBASIS_INDEX_U16 || self.index_type == TBASIS_INDEX_U32
@@ -88,7 +119,7 @@ impl Plan {
 
 /// A stride for `count` elements of `size` bytes: usually valid, sometimes too small, large,
 /// or so large that the span overflows (only when that is certain, so nothing is ever read).
-pub fn pick_stride(input: &mut Input, size: usize, count: usize) -> usize {
+fn pick_stride(input: &mut Input, size: usize, count: usize) -> usize {
     let fit = if count <= 1 {
         ARENA - size
     } else {
@@ -103,6 +134,13 @@ pub fn pick_stride(input: &mut Input, size: usize, count: usize) -> usize {
         14 if count <= 1 => input.u64() as usize | size,
         14 => (1usize << 63) | input.u64() as usize,
         _ => (size + 4 * (input.u8() as usize % 8)).min(fit),
+    }
+}
+
+/// A stride (see [`pick_stride`]) for each of `bufs`, in order.
+fn pick_strides(input: &mut Input, bufs: &mut [Buf], count: usize) {
+    for b in bufs {
+        b.stride = pick_stride(input, b.size, count);
     }
 }
 
@@ -185,9 +223,7 @@ pub fn decode_plan(input: &mut Input) -> Plan {
         }
         // Anywhere: bases independent of each other.
         6 => {
-            for k in POS..=BIT {
-                bufs[k].stride = pick_stride(input, bufs[k].size, vertex_count);
-            }
+            pick_strides(input, &mut bufs[POS..=BIT], vertex_count);
             for b in &mut bufs {
                 let room = b.extent().map_or(ARENA, |e| ARENA.saturating_sub(e) + 1);
                 b.base = input.below(room);
@@ -195,9 +231,7 @@ pub fn decode_plan(input: &mut Input) -> Plan {
         }
         // Packed one after another in some order, with small gaps (or small overlaps).
         _ => {
-            for k in POS..=BIT {
-                bufs[k].stride = pick_stride(input, bufs[k].size, vertex_count);
-            }
+            pick_strides(input, &mut bufs[POS..=BIT], vertex_count);
             let mut order = [POS, NRM, UV, TAN, BIT, IDX];
             shuffle(input, &mut order);
             let mut cursor = input.below(8);
@@ -267,107 +301,20 @@ pub fn decode_plan(input: &mut Input) -> Plan {
         _ => [f32::from_bits(1), f32::MIN_POSITIVE, 0.999, f32::MAX, 1e-30][input.u8() as usize % 5],
     };
 
-    // The scratch size comes from the library, which must agree with the documented formula.
-    let probe = tbasis_mesh {
+    let needed = scratch_needed(
         vertex_count,
-        positions: ptr::null(),
-        positions_stride: 0,
-        normals: ptr::null(),
-        normals_stride: 0,
-        texcoords: ptr::null(),
-        texcoords_stride: 0,
-        indices: ptr::null(),
-        index_count: 0,
-        index_type: 0,
-    };
-    // The size for these options (it may depend on them), and for NULL options (documented).
-    let probe_options = tbasis_options {
-        method,
-        degenerate_policy: policy,
-        flags,
-        threads,
-        degenerate_threshold: threshold,
-        scratch: ptr::null_mut(),
-        scratch_size: 0,
-    };
-    // SAFETY: `probe` and `probe_options` are readable descriptions; options may be NULL.
-    let needed = unsafe { tbasis_scratch_size(&probe, if options_null { ptr::null() } else { &probe_options }) };
-    let for_null_options = unsafe { tbasis_scratch_size(&probe, ptr::null()) };
-    let documented = if vertex_count == 0 {
-        0
-    } else {
-        vertex_count
-            .checked_mul(29)
-            .and_then(|n| n.checked_add(3))
-            .unwrap_or(usize::MAX)
-    };
-    assert_eq!(for_null_options, documented, "tbasis_scratch_size({vertex_count})");
-    // SAFETY: NULL is allowed.
-    assert_eq!(unsafe { tbasis_scratch_size(ptr::null(), ptr::null()) }, usize::MAX);
-
-    let mut scratch = ScratchPlan {
-        null: true,
-        claimed: 0,
-        ..Default::default()
-    };
-    match input.u8() % 8 {
-        0..=3 => {
-            if input.rare(4) {
-                scratch.claimed = input.u64() as usize;
-            }
-        }
-        // Exactly the size asked for, at every alignment.
-        4 if needed <= ARENA => {
-            scratch = own_scratch(input.below(4), needed);
-        }
-        // A little too small, or larger.
-        5 if needed <= ARENA => {
-            let claimed = if needed > 0 && input.u8() % 2 == 0 {
-                needed - 1 - input.below(needed.min(8))
-            } else {
-                needed + input.below(64)
-            };
-            scratch = own_scratch(input.below(4), claimed);
-        }
-        // Inside the main arena: after the buffers, or anywhere (likely overlapping them).
-        6 if needed <= ARENA - 16 => {
-            let claimed = needed + input.below(16);
-            let base = if input.u8() % 2 == 0 {
-                input.below(ARENA - claimed + 1)
-            } else {
-                let end = bufs
-                    .iter()
-                    .filter(|b| b.placed(ARENA))
-                    .map(|b| b.base + b.extent().unwrap_or(0))
-                    .max()
-                    .unwrap_or(0);
-                (end + input.below(8)).min(ARENA - claimed)
-            };
-            scratch = ScratchPlan {
-                null: false,
-                in_main: true,
-                base,
-                claimed,
-                arena_len: 0,
-            };
-        }
-        // A claimed size whose span overflows; never touched.
-        _ => {
-            scratch = ScratchPlan {
-                null: false,
-                in_main: false,
-                base: input.below(4),
-                claimed: (1usize << 63) | input.u64() as usize,
-                arena_len: 8,
-            };
-        }
-    }
-
+        &bufs[IDX],
+        options_null,
+        [method, policy, flags, threads],
+        threshold,
+    );
+    let scratch = pick_scratch(input, needed, &bufs);
     let struct_offsets = [input.below(8), input.below(8), input.below(8), input.below(9)];
     let arena_fill = input.u8();
     let scratch_fill = input.u8();
     let encodings = [pick_encoding(input), pick_encoding(input), pick_encoding(input)];
     Plan {
+        corners: false,
         vertex_count,
         bufs,
         index_type,
@@ -389,7 +336,199 @@ pub fn decode_plan(input: &mut Input) -> Plan {
     }
 }
 
-pub fn own_scratch(base: usize, claimed: usize) -> ScratchPlan {
+/// Bytes of caller scratch `tbasis_scratch_size` asks for this mesh and these options (`codes`:
+/// method, policy, flags, threads); for NULL options checked against the documented formula
+/// (MIKKTSPACE's is the library's unit test's to check: the calls use exactly the size asked
+/// for, or a little less or more).
+fn scratch_needed(vertex_count: usize, indices: &Buf, options_null: bool, codes: [u32; 4], threshold: f32) -> usize {
+    let [method, policy, flags, threads] = codes;
+    // Only the counts and whether `indices` is NULL are read (method MIKKTSPACE's size depends on
+    // the index count); no pointer is followed.
+    let probe = tbasis_mesh {
+        vertex_count,
+        positions: ptr::null(),
+        positions_stride: 0,
+        normals: ptr::null(),
+        normals_stride: 0,
+        texcoords: ptr::null(),
+        texcoords_stride: 0,
+        indices: if indices.null {
+            ptr::null()
+        } else {
+            ptr::NonNull::<u32>::dangling().as_ptr().cast()
+        },
+        index_count: indices.count,
+        index_type: 0,
+    };
+    let options = tbasis_options {
+        method,
+        degenerate_policy: policy,
+        flags,
+        threads,
+        degenerate_threshold: threshold,
+        scratch: ptr::null_mut(),
+        scratch_size: 0,
+    };
+    // SAFETY: `probe` and `options` are readable descriptions; options may be NULL.
+    let needed = unsafe { tbasis_scratch_size(&probe, if options_null { ptr::null() } else { &options }) };
+    let for_null_options = unsafe { tbasis_scratch_size(&probe, ptr::null()) };
+    let per_vertex = if vertex_count == 0 {
+        Some(0)
+    } else {
+        vertex_count.checked_mul(29).and_then(|n| n.checked_add(3))
+    };
+    assert_eq!(
+        for_null_options,
+        per_vertex.unwrap_or(usize::MAX),
+        "tbasis_scratch_size({vertex_count})"
+    );
+    // SAFETY: NULL is allowed.
+    assert_eq!(unsafe { tbasis_scratch_size(ptr::null(), ptr::null()) }, usize::MAX);
+    needed
+}
+
+/// Where the caller scratch goes, for `needed` bytes: usually none, sometimes exactly the size
+/// asked for, a little less or more, inside the main arena (after the buffers or anywhere), or a
+/// claimed size whose span overflows.
+fn pick_scratch(input: &mut Input, needed: usize, bufs: &[Buf]) -> ScratchPlan {
+    let mut scratch = ScratchPlan {
+        null: true,
+        claimed: 0,
+        ..Default::default()
+    };
+    match input.u8() % 8 {
+        0..=3 => {
+            if input.rare(4) {
+                scratch.claimed = input.u64() as usize;
+            }
+        }
+        // Exactly the size asked for, at every alignment.
+        4 if needed <= OWN_SCRATCH_MAX => {
+            scratch = own_scratch(input.below(4), needed);
+        }
+        // A little too small, or larger.
+        5 if needed <= OWN_SCRATCH_MAX => {
+            let claimed = if needed > 0 && input.u8() % 2 == 0 {
+                needed - 1 - input.below(needed.min(8))
+            } else {
+                needed + input.below(64)
+            };
+            scratch = own_scratch(input.below(4), claimed);
+        }
+        // Inside the main arena: after the buffers, or anywhere (likely overlapping them).
+        6 if needed <= ARENA - 16 => {
+            let claimed = needed + input.below(16);
+            let base = if input.u8() % 2 == 0 {
+                input.below(ARENA - claimed + 1)
+            } else {
+                (end_of(bufs) + input.below(8)).min(ARENA - claimed)
+            };
+            scratch = ScratchPlan {
+                null: false,
+                in_main: true,
+                base,
+                claimed,
+                arena_len: 0,
+            };
+        }
+        // A claimed size whose span overflows; never touched.
+        _ => {
+            scratch = ScratchPlan {
+                null: false,
+                in_main: false,
+                base: input.below(4),
+                claimed: (1usize << 63) | input.u64() as usize,
+                arena_len: 8,
+            };
+        }
+    }
+    scratch
+}
+
+/// The end of the last of `bufs` placed in the main arena.
+fn end_of<'a>(bufs: impl IntoIterator<Item = &'a Buf>) -> usize {
+    bufs.into_iter()
+        .filter(|b| b.placed(ARENA))
+        .map(|b| b.base + b.extent().unwrap_or(0))
+        .max()
+        .unwrap_or(0)
+}
+
+/// The `tbasis_generate_corners` call that follows the `tbasis_generate` call of `vertices`, on
+/// the same mesh, decoded from the bytes left over (all zeros: the same options, the tangents
+/// packed after the inputs, no caller scratch). Its tangents hold a frame per corner.
+pub fn decode_corners_plan(input: &mut Input, vertices: &Plan) -> Plan {
+    let mut plan = vertices.clone();
+    plan.corners = true;
+    plan.output_null = false;
+    plan.bufs[BIT] = Buf {
+        null: true,
+        ..Buf::default()
+    };
+    // Another method or policy sometimes, so that every one meets every layout.
+    match input.u8() % 16 {
+        0..=9 => {}
+        10..=14 => plan.method = u32::from(input.u8() % 7),
+        _ => plan.method = input.u32(),
+    }
+    match input.u8() % 8 {
+        0..=5 => {}
+        6 => plan.policy = u32::from(input.u8() % 6),
+        _ => plan.flags ^= TBASIS_FLAG_FLIP_V,
+    }
+    if input.rare(8) {
+        plan.threads = u32::from(input.u8() % 4);
+    }
+    plan.options_null = input.rare(16);
+    plan.report_null = input.rare(8);
+    plan.mesh_null = input.rare(64);
+
+    let indices = &plan.bufs[IDX];
+    let corner_count = if indices.null { plan.vertex_count } else { indices.count };
+    let tangents = &mut plan.bufs[TAN];
+    *tangents = Buf {
+        null: input.rare(32),
+        base: 0,
+        stride: 0,
+        size: 16,
+        count: corner_count,
+    };
+    tangents.stride = pick_stride(input, 16, corner_count);
+    let inputs = [
+        &vertices.bufs[POS],
+        &vertices.bufs[NRM],
+        &vertices.bufs[UV],
+        &vertices.bufs[IDX],
+    ];
+    tangents.base = match input.u8() % 8 {
+        // After the inputs, or anywhere, or near (or on) one of them.
+        0..=5 => end_of(inputs) + input.u8() as usize % 8,
+        6 => input.below(ARENA),
+        _ => {
+            let near = inputs[input.below(inputs.len())].base as isize;
+            (near + (input.u8() as i8 as isize) % 20).clamp(0, ARENA as isize - 1) as usize
+        }
+    };
+    tangents.clamp_into(ARENA);
+
+    let codes = [plan.method, plan.policy, plan.flags, plan.threads];
+    plan.scratch_needed = scratch_needed(
+        plan.vertex_count,
+        &plan.bufs[IDX],
+        plan.options_null,
+        codes,
+        plan.threshold,
+    );
+    plan.scratch = pick_scratch(input, plan.scratch_needed, &plan.bufs);
+    plan.struct_offsets = [input.below(8), input.below(8), 0, input.below(9)];
+    plan.scratch_fill = input.u8();
+    if debugging() {
+        eprintln!("corners call: {plan:#?}");
+    }
+    plan
+}
+
+fn own_scratch(base: usize, claimed: usize) -> ScratchPlan {
     ScratchPlan {
         null: false,
         in_main: false,

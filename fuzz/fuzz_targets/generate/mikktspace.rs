@@ -1,0 +1,255 @@
+//! Method MIKKTSPACE against mikktspace.c itself (`tests/common/mikktspace_reference.rs`, through
+//! `mikktspace-sys`): per corner, the same bits (a NaN matching any NaN) under policy LEGACY; under
+//! SKIP, INHERIT and REJECT, the same bits wherever mikktspace.c's frame is usable and a valid
+//! frame with mikktspace.c's sign wherever it is not; per vertex, the first corner's frame.
+
+use tbasis::ffi::{tbasis_report, TBASIS_DEGENERATE_LEGACY};
+use tbasis::{generate, generate_corners, DegeneratePolicy, Options, Output, StridedMut};
+
+use crate::call::describe_report;
+use crate::frames::{check_robust_tangent, dot, length, same_frame, show, unit};
+use crate::packed::Packed;
+
+/// What the library's test of a usable frame says about mikktspace.c's frame of a corner
+/// (finite, unit length and perpendicular to the unit normal, within 1e-5 in f32): the harness
+/// decides in f64 with a margin either side and leaves the rest undecided.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Usable {
+    Surely,
+    Maybe,
+    Not,
+}
+
+fn usable(t: [f32; 4], normal: [f32; 3]) -> Usable {
+    let v = [t[0], t[1], t[2]].map(f64::from);
+    if !t[..3].iter().all(|x| x.is_finite()) {
+        return Usable::Not;
+    }
+    let mut off = (length(v) - 1.0).abs();
+    if let Some(n) = unit(normal) {
+        off = off.max(dot(v, n).abs());
+    }
+    if off <= 0.9e-5 {
+        Usable::Surely
+    } else if off > 1.1e-5 {
+        Usable::Not
+    } else {
+        Usable::Maybe
+    }
+}
+
+/// Prints the mesh and stops: a mismatch against mikktspace.c is the finding this harness is for.
+fn mismatch(mesh: &Packed, options: &Options, message: String) -> ! {
+    eprintln!("mesh of the failing call ({options:?}):");
+    mesh.describe();
+    panic!("{message}");
+}
+
+/// Per vertex, its first corner.
+fn first_corners(mesh: &Packed) -> Vec<Option<usize>> {
+    let mut first = vec![None; mesh.vertex_count()];
+    for c in 0..mesh.corner_count() {
+        first[mesh.corner_vertex(c)].get_or_insert(c);
+    }
+    first
+}
+
+/// Checks the report's MIKKTSPACE counts against `corners`: vertices whose corners differ in any
+/// bit (split), whose corners have both signs (mirrored), and that no corner uses.
+fn check_counts(mesh: &Packed, corners: &[[f32; 4]], report: &tbasis_report, what: &str) {
+    let first = first_corners(mesh);
+    let (mut split, mut mirrored) = (vec![false; mesh.vertex_count()], vec![false; mesh.vertex_count()]);
+    for (c, t) in corners.iter().enumerate() {
+        let v = mesh.corner_vertex(c);
+        let f = corners[first[v].expect("a used vertex has a first corner")];
+        split[v] |= t.map(f32::to_bits) != f.map(f32::to_bits);
+        mirrored[v] |= t[3].to_bits() != f[3].to_bits();
+    }
+    let count = |marks: &[bool]| marks.iter().filter(|&&m| m).count();
+    let expected = (
+        count(&split),
+        count(&mirrored),
+        first.iter().filter(|f| f.is_none()).count(),
+    );
+    let got = (
+        report.split_vertices,
+        report.mirrored_vertices,
+        report.unreferenced_vertices,
+    );
+    assert_eq!(
+        got,
+        expected,
+        "{what}: (split, mirrored, unreferenced) vertices of the report ({}) are not the corners'",
+        describe_report(report)
+    );
+}
+
+/// Checks the library's corners of `mesh` under `options` (method MIKKTSPACE) against
+/// mikktspace.c's, and the report when there is one.
+pub fn check_corners(mesh: &Packed, options: &Options, ours: &[[f32; 4]], report: Option<&tbasis_report>, what: &str) {
+    let reference = mesh
+        .reference(options.flip_v)
+        .expect("MIKKTSPACE succeeded without texcoords");
+    assert_eq!(ours.len(), reference.len(), "{what}: corner count");
+    let legacy = options.degenerate_policy == DegeneratePolicy::Legacy;
+    let (mut surely, mut maybe) = (0, 0);
+    for (c, (&t, &r)) in ours.iter().zip(reference).enumerate() {
+        let v = mesh.corner_vertex(c);
+        let where_ = || format!("{what}, {options:?}: corner {c} (triangle {} vertex {v})", c / 3);
+        if legacy {
+            if !same_frame(t, r) {
+                mismatch(
+                    mesh,
+                    options,
+                    format!("{}: ours {}, mikktspace.c {}", where_(), show(t), show(r)),
+                );
+            }
+            continue;
+        }
+        let normal = mesh.normals[v];
+        let state = usable(r, normal);
+        surely += usize::from(state == Usable::Not);
+        maybe += usize::from(state != Usable::Surely);
+        if state == Usable::Surely && t.map(f32::to_bits) != r.map(f32::to_bits) {
+            mismatch(
+                mesh,
+                options,
+                format!(
+                    "{}: mikktspace.c's frame {} is usable, yet replaced by {}",
+                    where_(),
+                    show(r),
+                    show(t)
+                ),
+            );
+        }
+        check_robust_tangent(t, normal, || format!("{}: {}", where_(), show(t)));
+        assert_eq!(
+            t[3],
+            r[3],
+            "{}: the sign of {} is not mikktspace.c's ({})",
+            where_(),
+            show(t),
+            show(r)
+        );
+    }
+    if let Some(report) = report {
+        check_counts(mesh, ours, report, what);
+        if !legacy {
+            assert!(
+                (surely..=maybe).contains(&report.repaired_corners),
+                "{what}: repaired_corners {} should be in {surely}..={maybe}",
+                report.repaired_corners
+            );
+        }
+    }
+}
+
+/// The library's corners of `mesh` under `options` through the Rust API, with its report.
+fn our_corners(mesh: &Packed, options: &Options) -> (Vec<[f32; 4]>, tbasis_report) {
+    let mut corners = vec![[f32::NAN; 4]; mesh.corner_count()];
+    let report = generate_corners(&mesh.mesh(), options, &mut StridedMut::from_slice(&mut corners))
+        .unwrap_or_else(|e| panic!("generate_corners refused a valid mesh with {options:?}: {e:?}"));
+    (corners, report.into())
+}
+
+/// Checks the per-vertex frames of `tangents` (method MIKKTSPACE) and their report: each used
+/// vertex has exactly the bits of its first corner in the library's own corners (themselves
+/// checked against mikktspace.c), each unused one the fallback frame (valid, `w = +1`), and the
+/// report is the corners' but for those fallbacks.
+pub fn check_vertices(
+    mesh: &Packed,
+    options: &Options,
+    tangents: &[[f32; 4]],
+    report: Option<&tbasis_report>,
+    what: &str,
+) {
+    let (corners, corner_report) = our_corners(mesh, options);
+    check_corners(mesh, options, &corners, Some(&corner_report), "generate_corners");
+    vertex_frames(mesh, options, tangents, &corners, what);
+    if let Some(report) = report {
+        let expected = tbasis_report {
+            fallback_vertices: corner_report.unreferenced_vertices,
+            ..corner_report
+        };
+        assert_eq!(
+            describe_report(report),
+            describe_report(&expected),
+            "{what}, {options:?}: the report is not generate_corners' with the unused vertices as fallbacks"
+        );
+    }
+}
+
+fn vertex_frames(mesh: &Packed, options: &Options, tangents: &[[f32; 4]], corners: &[[f32; 4]], what: &str) {
+    for (v, first) in first_corners(mesh).into_iter().enumerate() {
+        let t = tangents[v];
+        match first {
+            Some(c) => assert_eq!(
+                t.map(f32::to_bits),
+                corners[c].map(f32::to_bits),
+                "{what}, {options:?}: vertex {v} is {}, its first corner {c} {}",
+                show(t),
+                show(corners[c])
+            ),
+            None => {
+                let context = || format!("{what}: unused vertex {v}: {}", show(t));
+                check_robust_tangent(t, mesh.normals[v], context);
+                assert_eq!(t[3], 1.0, "{}: the fallback frame has w = +1", context());
+            }
+        }
+    }
+}
+
+/// Method MIKKTSPACE with policy LEGACY through the Rust API, with `flip_v` off and on, per corner
+/// with each of `threads` and per vertex with the first, against mikktspace.c: per corner, per
+/// vertex and in the report.
+pub fn check(mesh: &Packed, threads: &[u32]) {
+    if mesh.texcoords.is_none() {
+        return;
+    }
+    let bits = |frames: &[[f32; 4]]| frames.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for flip_v in [false, true] {
+        let mut first: Option<(Vec<[f32; 4]>, tbasis_report)> = None;
+        for &threads in threads {
+            let options = Options {
+                flip_v,
+                threads,
+                ..Options::mikktspace()
+            };
+            assert_eq!(options.degenerate_policy as u32, TBASIS_DEGENERATE_LEGACY);
+            let (corners, report) = our_corners(mesh, &options);
+            match &first {
+                Some((one, _)) => assert!(bits(one) == bits(&corners), "{options:?}: bits differ from threads=1"),
+                None => {
+                    check_corners(mesh, &options, &corners, Some(&report), "generate_corners");
+                    assert_eq!(report.repaired_corners, 0, "repaired corners under LEGACY");
+                    first = Some((corners, report));
+                }
+            }
+        }
+        let Some((corners, report)) = first else {
+            return;
+        };
+        let options = Options {
+            flip_v,
+            threads: threads[0],
+            ..Options::mikktspace()
+        };
+        let mut tangents = vec![[f32::NAN; 4]; mesh.vertex_count()];
+        let mut output = Output {
+            tangents: StridedMut::from_slice(&mut tangents),
+            bitangents: None,
+        };
+        let vertex_report = generate(&mesh.mesh(), &options, &mut output)
+            .unwrap_or_else(|e| panic!("generate refused a valid mesh with {options:?}: {e:?}"));
+        vertex_frames(mesh, &options, &tangents, &corners, "generate");
+        let expected = tbasis_report {
+            fallback_vertices: report.unreferenced_vertices,
+            ..report
+        };
+        assert_eq!(
+            describe_report(&vertex_report.into()),
+            describe_report(&expected),
+            "generate, {options:?}: the report is not generate_corners' with the unused vertices as fallbacks"
+        );
+    }
+}

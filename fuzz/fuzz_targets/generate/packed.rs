@@ -1,0 +1,160 @@
+//! The mesh of a plan as the library reads it, copied into plain arrays: for the Rust API and for
+//! mikktspace.c, which take no strides.
+
+use std::cell::OnceCell;
+
+use tbasis::{Indices, Mesh, Strided};
+
+use crate::arena::{vec_at, Buf};
+use crate::mikktspace_reference::reference_corners;
+use crate::plan::{read_indices, Plan, ARENA, IDX, NRM, POS, UV};
+
+pub struct Packed {
+    pub positions: Vec<[f32; 3]>,
+    pub normals: Vec<[f32; 3]>,
+    /// `None` when the call passes no texture coordinates.
+    pub texcoords: Option<Vec<[f32; 2]>>,
+    /// Widened to u32; `None`: unindexed.
+    pub indices: Option<Vec<u32>>,
+    /// mikktspace.c's corners with `flip_v` off and on, computed when first asked for.
+    references: [OnceCell<Vec<[f32; 4]>>; 2],
+}
+
+/// The buffer's elements, when the library can read them all (none when it is NULL and empty).
+fn elements<const N: usize>(buf: &Buf, arena: &[u8]) -> Option<Vec<[f32; N]>> {
+    let readable = buf.violations() == 0 && (buf.count == 0 || buf.placed(ARENA));
+    readable.then(|| (0..buf.count).map(|i| vec_at(arena, buf.element(i))).collect())
+}
+
+impl Packed {
+    /// The mesh of `plan` over `arena`, when it is one the library must accept: every buffer it
+    /// reads readable, whole triangles, indices in range.
+    pub fn of(plan: &Plan, arena: &[u8]) -> Option<Packed> {
+        let b = &plan.bufs;
+        let positions = elements(&b[POS], arena)?;
+        let normals = elements(&b[NRM], arena)?;
+        let texcoords = if b[UV].null {
+            None
+        } else {
+            Some(elements(&b[UV], arena)?)
+        };
+        let indices = if b[IDX].null {
+            (b[IDX].count == 0 && plan.vertex_count % 3 == 0).then_some(None)?
+        } else {
+            let readable = plan.index_type_valid() && b[IDX].violations() == 0 && b[IDX].placed(ARENA);
+            let values = readable.then(|| read_indices(plan, arena))?;
+            let whole = values.len() % 3 == 0 && values.iter().all(|&i| i < plan.vertex_count);
+            whole.then(|| Some(values.into_iter().map(|i| i as u32).collect()))?
+        };
+        Some(Packed::new(positions, normals, texcoords, indices))
+    }
+
+    fn new(
+        positions: Vec<[f32; 3]>,
+        normals: Vec<[f32; 3]>,
+        texcoords: Option<Vec<[f32; 2]>>,
+        indices: Option<Vec<u32>>,
+    ) -> Packed {
+        Packed {
+            positions,
+            normals,
+            texcoords,
+            indices,
+            references: Default::default(),
+        }
+    }
+
+    /// Meshes made from this one on which what mikktspace.c's welding, edge pairing and grouping
+    /// hinge on is common: every value snapped to one of a few (equal corners, shared edges,
+    /// collapsed triangles, exact mirror seams; NaN stays NaN), and the same corners unindexed
+    /// (welding must find the vertices the index buffer shared).
+    pub fn variants(&self) -> Vec<Packed> {
+        let snap = |x: f32| (x / 4.0).round().clamp(-2.0, 2.0);
+        let snap_normal = |x: f32| x.round().clamp(-1.0, 1.0);
+        let mut variants = vec![Packed::new(
+            self.positions.iter().map(|p| p.map(snap)).collect(),
+            self.normals.iter().map(|n| n.map(snap_normal)).collect(),
+            self.texcoords
+                .as_ref()
+                .map(|t| t.iter().map(|uv| uv.map(snap)).collect()),
+            self.indices.clone(),
+        )];
+        if self.indices.is_some() {
+            let corners = 0..self.corner_count();
+            let gather = |values: &[[f32; 3]]| corners.clone().map(|c| values[self.corner_vertex(c)]).collect();
+            variants.push(Packed::new(
+                gather(&self.positions),
+                gather(&self.normals),
+                self.texcoords
+                    .as_ref()
+                    .map(|t| corners.clone().map(|c| t[self.corner_vertex(c)]).collect()),
+                None,
+            ));
+        }
+        variants
+    }
+
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn corner_count(&self) -> usize {
+        self.indices.as_ref().map_or(self.vertex_count(), Vec::len)
+    }
+
+    pub fn corner_vertex(&self, c: usize) -> usize {
+        self.indices.as_ref().map_or(c, |indices| indices[c] as usize)
+    }
+
+    pub fn mesh(&self) -> Mesh<'_> {
+        Mesh {
+            positions: Strided::from_slice(&self.positions),
+            normals: Strided::from_slice(&self.normals),
+            texcoords: self.texcoords.as_deref().map(Strided::from_slice),
+            indices: self
+                .indices
+                .as_deref()
+                .map_or(Indices::None, |i| Indices::U32(Strided::from_slice(i))),
+        }
+    }
+
+    /// mikktspace.c's frame per corner (`None` without texture coordinates).
+    pub fn reference(&self, flip_v: bool) -> Option<&[[f32; 4]]> {
+        let texcoords = self.texcoords.as_deref()?;
+        let corners = self.references[usize::from(flip_v)].get_or_init(|| {
+            // mikktspace.c returns false, writing nothing, only without triangles.
+            reference_corners(
+                &self.positions,
+                &self.normals,
+                texcoords,
+                self.indices.as_deref(),
+                flip_v,
+            )
+            .unwrap_or_else(|| {
+                assert_eq!(self.corner_count(), 0, "mikktspace.c failed on a mesh with triangles");
+                Vec::new()
+            })
+        });
+        Some(corners)
+    }
+
+    /// Prints the mesh, for `FUZZ_DEBUG=1` and for writing a finding down.
+    pub fn describe(&self) {
+        for v in 0..self.vertex_count() {
+            let uv = self.texcoords.as_ref().map(|t| t[v]);
+            eprintln!(
+                "v{v}: p {:?} n {:?} uv {:?}  bits p {:08x?} n {:08x?} uv {:08x?}",
+                self.positions[v],
+                self.normals[v],
+                uv,
+                self.positions[v].map(f32::to_bits),
+                self.normals[v].map(f32::to_bits),
+                uv.map(|uv| uv.map(f32::to_bits))
+            );
+        }
+        match &self.indices {
+            Some(indices) => eprintln!("indices {indices:?}"),
+            None => eprintln!("unindexed"),
+        }
+    }
+}
