@@ -35,6 +35,8 @@ mod scratch;
 mod status;
 #[allow(unsafe_code)]
 mod strided;
+#[cfg(test)]
+mod thread_count_tests;
 mod transform;
 mod validate;
 mod vertex_corners;

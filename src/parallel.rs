@@ -4,13 +4,16 @@
 //! its triangles in triangle order and the result is bit-identical whatever the thread count.
 #![forbid(unsafe_code)]
 
+use std::sync::{Mutex, PoisonError};
+
 use crate::mesh::Mesh;
 use crate::report::Report;
 use crate::status::Error;
 
 /// Vertices each worker should have at least: below that, starting a thread costs more than it
-/// saves, so small meshes stay on the calling thread.
-const MIN_VERTICES_PER_WORKER: usize = 32 * 1024;
+/// saves, so small meshes stay on the calling thread. Unit tests split small meshes too
+/// (`thread_count_tests.rs`).
+const MIN_VERTICES_PER_WORKER: usize = if cfg!(test) { 16 } else { 32 * 1024 };
 
 /// Every how many triangles [`split_pays_off`] looks at one.
 const LOCALITY_SAMPLE_STEP: usize = 16;
@@ -59,13 +62,39 @@ pub fn range_ends(vertex_count: usize, workers: usize) -> Vec<usize> {
 /// Runs `job` on every part, the first on the calling thread and the others on scoped threads,
 /// and returns the results in part order. A panic in a worker resumes on the calling thread.
 pub fn run<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync) -> Vec<R> {
+    run_spawning(parts, job, || true)
+}
+
+/// [`run`], asking `may_spawn` before each thread so a test can make spawning fail. A part whose
+/// thread cannot be started (out of threads or memory) runs on the calling thread instead: parts
+/// are independent, so the bits are the same either way, never a partial output.
+fn run_spawning<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync, may_spawn: impl Fn() -> bool) -> Vec<R> {
+    // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
+    // nothing.
+    let slots: Vec<Mutex<Option<P>>> = parts.into_iter().map(|part| Mutex::new(Some(part))).collect();
+    let take = |slot: &Mutex<Option<P>>| {
+        let part = slot.lock().unwrap_or_else(PoisonError::into_inner).take();
+        part.expect("each part runs once")
+    };
+    let Some((first, others)) = slots.split_first() else {
+        return Vec::new();
+    };
     std::thread::scope(|scope| {
-        let mut parts = parts.into_iter();
-        let first = parts.next();
-        let spawned: Vec<_> = parts.map(|part| scope.spawn(|| job(part))).collect();
-        let mut results: Vec<R> = first.map(&job).into_iter().collect();
-        for handle in spawned {
-            results.push(handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
+        let spawned: Vec<_> = others
+            .iter()
+            .map(|slot| {
+                let work = || job(take(slot));
+                may_spawn()
+                    .then(|| std::thread::Builder::new().spawn_scoped(scope, work).ok())
+                    .flatten()
+            })
+            .collect();
+        let mut results = vec![job(take(first))];
+        for (slot, handle) in others.iter().zip(spawned) {
+            results.push(match handle {
+                Some(handle) => handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+                None => job(take(slot)),
+            });
         }
         results
     })
@@ -122,16 +151,31 @@ mod tests {
 
     #[test]
     fn workers_follow_threads_size_and_locality() {
-        assert_eq!(workers_for(8, 1000, false), 1);
-        assert_eq!(workers_for(0, 1_000_000, false), 1);
-        assert_eq!(workers_for(4, 1_000_000, false), 4);
+        assert_eq!(workers_for(8, MIN_VERTICES_PER_WORKER, false), 1);
+        assert_eq!(workers_for(0, 1000 * MIN_VERTICES_PER_WORKER, false), 1);
+        assert_eq!(workers_for(4, 1000 * MIN_VERTICES_PER_WORKER, false), 4);
         assert_eq!(workers_for(4, 3 * MIN_VERTICES_PER_WORKER, false), 3);
         // Every triangle spans both halves: both workers would read all of them.
-        assert_eq!(workers_for(2, 1_000_000, true), 1);
+        assert_eq!(workers_for(2, 1000 * MIN_VERTICES_PER_WORKER, true), 1);
     }
 
     #[test]
     fn run_keeps_part_order() {
         assert_eq!(run(vec![1, 2, 3, 4], |x| x * 10), vec![10, 20, 30, 40]);
+        assert_eq!(run(Vec::<u8>::new(), |x| x), Vec::<u8>::new());
+    }
+
+    #[test]
+    fn parts_whose_thread_fails_to_start_run_on_the_caller() {
+        let caller = std::thread::current().id();
+        let parts: Vec<usize> = (0..6).collect();
+        let on_caller = |part: usize| (part * 10, std::thread::current().id() == caller);
+        let none = run_spawning(parts.clone(), on_caller, || false);
+        assert_eq!(none, (0..6).map(|p| (p * 10, true)).collect::<Vec<_>>());
+        // Every other spawn fails: those parts run on the caller, the rest on their threads.
+        let attempt = std::sync::atomic::AtomicUsize::new(0);
+        let alternate = run_spawning(parts, on_caller, || attempt.fetch_add(1, std::sync::atomic::Ordering::Relaxed) % 2 == 1);
+        let expected: Vec<_> = (0..6).map(|p| (p * 10, p == 0 || p % 2 == 1)).collect();
+        assert_eq!(alternate, expected);
     }
 }

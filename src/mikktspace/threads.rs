@@ -5,7 +5,8 @@
 use crate::parallel;
 
 /// Triangles each worker should have at least: below that a thread costs more than it saves.
-const MIN_TRIANGLES_PER_WORKER: usize = 16 * 1024;
+/// Unit tests split small meshes too (`thread_count_tests.rs`).
+const MIN_TRIANGLES_PER_WORKER: usize = if cfg!(test) { 8 } else { 16 * 1024 };
 
 /// The exclusive ends of the triangle ranges `triangles` good triangles split into for at most
 /// `threads` workers (one range when threads would not pay).
