@@ -1,9 +1,17 @@
 //! Generates the C header from `src/ffi.rs` into `$OUT_DIR/tbasis.h`, with version macros from
 //! Cargo.toml. The committed `include/tbasis.h` must equal it: a test compares the two, and
 //! `TBASIS_WRITE_HEADER=1 cargo build` copies the generated one over the committed one.
+//!
+//! It also gives the Linux shared library its soname (and the build tree a link of that name), and
+//! tells the tests which of their needs (the mesh corpus, tools) are missing.
 
 use std::env;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+// Shared with the tests, which check the same needs again when they run.
+#[allow(dead_code)]
+#[path = "tests/common/needs.rs"]
+mod needs;
 
 fn main() {
     let crate_dir = PathBuf::from(env::var("CARGO_MANIFEST_DIR").unwrap());
@@ -33,6 +41,7 @@ fn main() {
     }
 
     compile_listing(&crate_dir);
+    declare_test_needs(&crate_dir);
 }
 
 /// Compiles `c_tests/listing.c`, the C port of the original listing, into a static archive that
@@ -74,4 +83,75 @@ fn set_soname(major: &str, minor: &str) {
         format!("libtbasis.so.{major}")
     };
     println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,{soname}");
+    link_soname_in_build_tree(&soname);
+}
+
+/// A program linked with `-Ltarget/release -ltbasis` loads the soname, but cargo writes only
+/// `libtbasis.so`: a relative `soname -> libtbasis.so` symlink beside it lets the program run from
+/// the build tree with `LD_LIBRARY_PATH=target/release`. An rpath would not help: it belongs in the
+/// program, which the user links. Links left by an older soname are removed, so that programs
+/// built against it fail to start rather than load an incompatible library.
+fn link_soname_in_build_tree(soname: &str) {
+    // OUT_DIR is <profile dir>/build/tbasis-<hash>/out, and cargo puts libtbasis.so in the profile
+    // dir; in any other layout there is nowhere certain to put the link.
+    let out_dir = PathBuf::from(env::var("OUT_DIR").unwrap());
+    let mut ancestors = out_dir.ancestors().skip(2);
+    let (Some(build), Some(profile_dir)) = (ancestors.next(), ancestors.next()) else {
+        return;
+    };
+    if build.file_name() != Some("build".as_ref()) {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(profile_dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let is_ours = name
+            .to_str()
+            .is_some_and(|n| n.starts_with("libtbasis.so.") && n != soname);
+        if is_ours && std::fs::read_link(entry.path()).is_ok_and(|target| target == Path::new("libtbasis.so")) {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+    let link = profile_dir.join(soname);
+    match std::fs::read_link(&link) {
+        Ok(target) if target == Path::new("libtbasis.so") => return,
+        Ok(_) => {
+            let _ = std::fs::remove_file(&link);
+        }
+        Err(_) if link.symlink_metadata().is_ok() => {
+            println!("cargo:warning={} is not a symlink; left as it is", link.display());
+            return;
+        }
+        Err(_) => {}
+    }
+    #[cfg(unix)]
+    if let Err(e) = std::os::unix::fs::symlink("libtbasis.so", &link) {
+        println!("cargo:warning=cannot create {}: {e}", link.display());
+    }
+}
+
+/// For each test need (`tests/common/needs.rs`) found missing, sets the cfg
+/// `tbasis_missing_<name>`, which compiles the tests that need it as ignored, and lists the names
+/// in `TBASIS_MISSING_NEEDS`. Under CI (`CI` set) none is set, so such tests run and fail.
+fn declare_test_needs(crate_dir: &Path) {
+    println!("cargo:rerun-if-env-changed=CI");
+    // A deletion of the corpus is seen; its arrival cannot be, since watching a missing path
+    // reruns this script, and rebuilds the library, on every build (tests/needs.rs catches it).
+    if Path::new(needs::CORPUS_MANIFEST).is_file() {
+        println!("cargo:rerun-if-changed={}", needs::CORPUS_MANIFEST);
+    }
+    // A copy under CARGO_HOME is another package's dependency, whose tests are never built.
+    let dependency = env::var_os("CARGO_HOME").is_some_and(|home| crate_dir.starts_with(home));
+    let probe = env::var_os("CI").is_none() && !dependency;
+    let mut missing = Vec::new();
+    for need in needs::ALL {
+        println!("cargo::rustc-check-cfg=cfg(tbasis_missing_{})", need.name);
+        if probe && !need.found() {
+            println!("cargo::rustc-cfg=tbasis_missing_{}", need.name);
+            missing.push(need.name);
+        }
+    }
+    println!("cargo::rustc-env=TBASIS_MISSING_NEEDS={}", missing.join(","));
 }

@@ -24,21 +24,6 @@ static tbasis_options method_options(uint32_t method, uint32_t policy)
     return o;
 }
 
-/* The vertex of corner c of a described mesh. */
-static size_t corner_vertex(const tbasis_mesh *d, size_t c)
-{
-    if (d->indices == NULL)
-        return c;
-    if (d->index_type == TBASIS_INDEX_U16)
-        return ((const uint16_t *)d->indices)[c];
-    return ((const uint32_t *)d->indices)[c];
-}
-
-static size_t corner_count(const tbasis_mesh *d)
-{
-    return d->indices != NULL ? d->index_count : d->vertex_count;
-}
-
 /* The sign (+1, -1 or 0) of the UV determinant of the triangle corner c belongs to. */
 static int corner_orientation(const test_mesh *m, const tbasis_mesh *d, size_t c)
 {
@@ -436,20 +421,24 @@ void test_scratch_sizes(const test_mesh *m)
     tbasis_options options;
     tbasis_mesh desc, empty;
     uint32_t method, policy;
-    size_t k;
+    size_t k, corners, expected;
 
     for (k = 0; k < COUNT(index_types); k++) {
         if (index_types[k] == TBASIS_INDEX_U16 && m->indices16 == NULL)
             continue;
         desc = mesh_description(m, index_types[k]);
-        /* Per-vertex methods: the same for both calls, whatever the index count. */
+        corners = desc.indices != NULL ? desc.index_count : desc.vertex_count;
+        /* Per-vertex methods: the same for both calls; policy INHERIT (also policy 0) adds its
+           adjacency, 8 bytes per vertex and 4 per corner. */
         for (method = 0; method <= TBASIS_METHOD_UNIFORM; method++)
             for (policy = 0; policy <= TBASIS_DEGENERATE_REJECT; policy++) {
                 options = method_options(method, policy);
-                check(tbasis_scratch_size(&desc, &options) == per_vertex,
+                expected = policy == 0 || policy == TBASIS_DEGENERATE_INHERIT ? per_vertex + n * 8 + corners * 4
+                                                                               : per_vertex;
+                check(tbasis_scratch_size(&desc, &options) == expected,
                       "tbasis_scratch_size (%s, method %u, policy %u) is %zu, expected %zu",
                       index_type_name(index_types[k]), (unsigned)method, (unsigned)policy,
-                      tbasis_scratch_size(&desc, &options), per_vertex);
+                      tbasis_scratch_size(&desc, &options), expected);
             }
         options = method_options(TBASIS_METHOD_MIKKTSPACE, 0);
         check(tbasis_scratch_size(&desc, &options) != SIZE_MAX, "tbasis_scratch_size (%s, MIKKTSPACE) is SIZE_MAX",

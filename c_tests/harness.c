@@ -13,6 +13,7 @@
 #include "cases.h"
 #include "check.h"
 #include "corners.h"
+#include "split.h"
 #include "fixture.h"
 #include "listing.h"
 #include "meshes.h"
@@ -507,9 +508,10 @@ done:
 
 static void test_scratch(const test_mesh *m)
 {
-    size_t n = (size_t)m->vertex_count, needed, offset;
+    size_t n = (size_t)m->vertex_count, needed, exact, offset;
     const uint32_t policies[] = {TBASIS_DEGENERATE_LEGACY, TBASIS_DEGENERATE_INHERIT};
     tbasis_mesh desc = mesh_description(m, TBASIS_INDEX_U32), huge = desc, empty = desc;
+    const size_t corners = desc.index_count, inherit = n * 37 + corners * 4 + 3;
     tbasis_options options;
     tbasis_output output;
     unsigned char *scratch;
@@ -518,10 +520,13 @@ static void test_scratch(const test_mesh *m)
     size_t p;
 
     memset(&out, 0, sizeof out);
+    /* The default policy, INHERIT, adds its adjacency: 8 bytes per vertex and 4 per corner. */
     needed = tbasis_scratch_size(&desc, NULL);
-    check(needed == n * 29 + 3, "tbasis_scratch_size is %zu for %zu vertices, expected %zu", needed, n, n * 29 + 3);
+    check(needed == inherit, "tbasis_scratch_size is %zu for %zu vertices and %zu corners, expected %zu", needed, n,
+          corners, inherit);
     options = policy_options(TBASIS_DEGENERATE_SKIP);
-    check(tbasis_scratch_size(&desc, &options) == needed, "tbasis_scratch_size depends on the options");
+    check(tbasis_scratch_size(&desc, &options) == n * 29 + 3, "tbasis_scratch_size with SKIP is %zu, expected %zu",
+          tbasis_scratch_size(&desc, &options), n * 29 + 3);
     empty.vertex_count = 0;
     check(tbasis_scratch_size(&empty, NULL) == 0, "tbasis_scratch_size of an empty mesh is not 0");
     check(tbasis_scratch_size(NULL, NULL) == SIZE_MAX, "tbasis_scratch_size(NULL) is not SIZE_MAX");
@@ -545,19 +550,20 @@ static void test_scratch(const test_mesh *m)
                           TBASIS_OK))
             check_float_bits("threads = 4 vs the calling thread only", plain, out.inner, 4 * n);
         options.threads = 0;
+        exact = tbasis_scratch_size(&desc, &options);
         /* Every alignment of the caller's bytes must do with exactly the documented size. */
         for (offset = 0; offset < 4; offset++) {
             char what[128];
             guarded_reset(&out);
             options.scratch = scratch + offset;
-            options.scratch_size = needed;
+            options.scratch_size = exact;
             snprintf(what, sizeof what, "policy %u, scratch of exactly %zu bytes at offset %zu", (unsigned)policies[p],
-                     needed, offset);
+                     exact, offset);
             if (expect_status(what, tbasis_generate(&desc, &options, &output, NULL), TBASIS_OK))
                 check_float_bits(what, plain, out.inner, 4 * n);
 
             guarded_reset(&out);
-            options.scratch_size = needed - 1;
+            options.scratch_size = exact - 1;
             snprintf(what, sizeof what, "policy %u, scratch one byte short at offset %zu", (unsigned)policies[p],
                      offset);
             expect_status(what, tbasis_generate(&desc, &options, &output, NULL), TBASIS_ERROR_SCRATCH_TOO_SMALL);
@@ -641,8 +647,9 @@ static void expect_legacy(fixture *f, const char *what, tbasis_status want, long
 
 static void test_statuses(fixture *f)
 {
-    const size_t n = (size_t)f->source->vertex_count, needed = n * 29 + 3;
     const long v = f->source->vertex_count, t = f->source->triangle_count;
+    /* The fixture's policy is INHERIT: 37 bytes per vertex and 4 per corner. */
+    const size_t n = (size_t)v, needed = n * 37 + 12 * (size_t)t + 3;
     arena *a = &f->memory;
     uint16_t index16;
     uint32_t index32;
@@ -1130,6 +1137,7 @@ int main(int argc, char **argv)
     if (check(corner_grids_made, "corner grids: out of memory")) {
         test_corners(&corner_grids[0], 1, 1);
         test_corners(&corner_grids[1], 0, 1);
+        test_split(&corner_grids[0]);
     }
     if (made[4])
         test_corners(&meshes[4], 0, 0);
@@ -1143,6 +1151,7 @@ int main(int argc, char **argv)
         f->source = &small;
         test_statuses(f);
         test_corner_statuses(&small);
+        test_split_statuses(&small);
     }
     test_transforms();
     /* Every error but INTERNAL, which only a bug in the library returns. */

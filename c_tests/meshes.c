@@ -218,3 +218,17 @@ const char *index_type_name(uint32_t index_type)
 {
     return index_type == TBASIS_INDEX_U16 ? "u16" : index_type == TBASIS_INDEX_U32 ? "u32" : "unindexed";
 }
+
+size_t corner_count(const tbasis_mesh *d)
+{
+    return d->indices != NULL ? d->index_count : d->vertex_count;
+}
+
+size_t corner_vertex(const tbasis_mesh *d, size_t c)
+{
+    if (d->indices == NULL)
+        return c;
+    if (d->index_type == TBASIS_INDEX_U16)
+        return ((const uint16_t *)d->indices)[c];
+    return ((const uint32_t *)d->indices)[c];
+}

@@ -2,6 +2,7 @@
 #ifndef MESHES_H
 #define MESHES_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "tbasis.h"
@@ -42,6 +43,11 @@ tbasis_mesh mesh_description(const test_mesh *m, uint32_t index_type);
 
 /* The mesh's index array of that type; NULL for 0 (unindexed). */
 const void *mesh_indices(const test_mesh *m, uint32_t index_type);
+
+/* The corners of a described mesh (index_count, or vertex_count when unindexed), and the vertex of
+   corner c. */
+size_t corner_count(const tbasis_mesh *d);
+size_t corner_vertex(const tbasis_mesh *d, size_t c);
 
 /* "u16", "u32" or "unindexed". */
 const char *index_type_name(uint32_t index_type);

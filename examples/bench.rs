@@ -2,13 +2,18 @@
 //! read bandwidth, in one run; and of method MIKKTSPACE against mikktspace.c itself.
 //!
 //! ```text
-//! cargo run --release --example bench
+//! cargo run --release --example bench [FILTER]
 //! ```
 //!
 //! Scenes: the irregular torus of `docs/chart.md` at about 1M vertices (`tests/common/scenes.rs`),
 //! `../shared/meshes/derived/FlightHelmet.cc1.glb` (a real asset of 849k vertices, one call per
 //! primitive; skipped with a message when the corpus is absent) and a 24-vertex cube with a UV
-//! square per face (per-call overhead).
+//! square per face (per-call overhead). Last, with configurations of its own, a 1M-vertex grid
+//! whose UVs collapse everywhere but on a small island, where policy INHERIT must spread tangents
+//! across the whole mesh (its time against SKIP's).
+//!
+//! `FILTER` runs only the scenes whose name contains it (`torus`, `asset`, `cube`, `grid`) and
+//! rewrites no part of `docs/bench.md` but the collapsed grid's section, when it ran.
 //!
 //! Every configuration runs on the same buffers, interleaved round by round so that a drift in the
 //! machine's speed touches them all alike; each time is the median over the rounds. Besides
@@ -782,6 +787,8 @@ impl Bandwidth {
 }
 
 fn main() {
+    let filter = std::env::args().nth(1);
+    let selected = |what: &str| filter.as_deref().map_or(true, |f| what.contains(f));
     let load_before = load_average();
     println!("{}; load average {load_before}", machine());
     let started = Instant::now();
@@ -805,6 +812,9 @@ fn main() {
     let mut skipped = None;
     let builders: [(&str, SceneBuilder); 3] = [("torus", || Ok(torus())), ("asset", asset), ("cube", || Ok(cube()))];
     for (what, build) in builders {
+        if !selected(what) {
+            continue;
+        }
         let scene = match build() {
             Ok(scene) => scene,
             Err(why) => {
@@ -844,8 +854,18 @@ fn main() {
         );
         results.push(result);
     }
+    let grid = selected("grid").then(grid_section);
     let load_after = load_average();
     let elapsed = started.elapsed();
+    if filter.is_some() {
+        if let Some(section) = grid {
+            let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/bench.md");
+            let old = fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            fs::write(&path, with_grid_section(&old, &section)).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            println!("rewrote the collapsed grid's section of {}", path.display());
+        }
+        return;
+    }
 
     let summary = summary(&results, &configs);
     let against_c = mikktspace_table(&results, &configs);
@@ -943,6 +963,9 @@ fn main() {
     }
     if let Some(why) = skipped {
         writeln!(md, "## {ASSET}\n\nSkipped: {why}.\n").unwrap();
+    }
+    if let Some(section) = grid {
+        md.push_str(&section);
     }
     md.push_str("## MIKKTSPACE against mikktspace.c\n\n");
     md.push_str(&against_c);
@@ -1064,4 +1087,165 @@ fn summary(results: &[SceneResult], configs: &[Config]) -> String {
         .unwrap();
     }
     text
+}
+
+/// Vertices along each side of the collapsed grid.
+const GRID_SIDE: usize = 1000;
+
+/// Vertices along each side of its island of distinct UVs, in one corner.
+const ISLAND_SIDE: usize = 8;
+
+/// The heading of the collapsed grid's section, by which a filtered run finds it.
+const GRID_HEADING: &str = "## Collapsed grid";
+
+/// A flat square grid of [`GRID_SIDE`]^2 vertices whose UVs all collapse to one point except on an
+/// [`ISLAND_SIDE`]^2 island in a corner: under SKIP nearly every vertex gets the fallback frame;
+/// under INHERIT the island's tangents spread over the whole grid, one ring of vertices at a time.
+fn collapsed_grid() -> Scene {
+    let n = GRID_SIDE;
+    let mut part = Part {
+        positions: Vec::with_capacity(n * n),
+        normals: vec![[0.0, 0.0, 1.0]; n * n],
+        texcoords: Vec::with_capacity(n * n),
+        listing_texcoords: Vec::new(),
+        indices: Vec::with_capacity(6 * (n - 1) * (n - 1)),
+        flip_v: false,
+    };
+    let step = 1.0 / (n - 1) as f32;
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f32 * step, j as f32 * step);
+            part.positions.push([x, y, 0.0]);
+            let island = i < ISLAND_SIDE && j < ISLAND_SIDE;
+            part.texcoords.push(if island { [x, y] } else { [0.5, 0.5] });
+        }
+    }
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let v = (j * n + i) as u32;
+            let (right, up) = (v + 1, v + n as u32);
+            part.indices.extend_from_slice(&[v, right, up + 1, v, up + 1, up]);
+        }
+    }
+    part.listing_texcoords = part.texcoords.clone();
+    Scene {
+        name: "Collapsed grid".to_string(),
+        short: "grid".to_string(),
+        parts: vec![part],
+        small: false,
+    }
+}
+
+/// SKIP and INHERIT with the default method, on the calling thread, allocating their scratch.
+fn grid_configs() -> Vec<Config> {
+    let method = Options::default().method;
+    [DegeneratePolicy::Skip, DegeneratePolicy::Inherit]
+        .into_iter()
+        .map(|policy| Config {
+            name: format!("{}+{}", upper(method), upper(policy)),
+            generator: Generator::library(Options {
+                method,
+                degenerate_policy: policy,
+                threads: 1,
+                ..Options::default()
+            }),
+        })
+        .collect()
+}
+
+/// The report of one call of `config` on the scene's only part.
+fn report_of(config: &Config, scene: &Scene) -> Report {
+    let Generator::Library(call) = config.generator else {
+        unreachable!("library configurations only")
+    };
+    let part = &scene.parts[0];
+    let mut tangents = vec![[0.0f32; 4]; part.vertices()];
+    let mut output = Output {
+        tangents: StridedMut::from_slice(&mut tangents),
+        bitangents: None,
+    };
+    tbasis::generate(&part.mesh(), &call.options, &mut output).expect("the collapsed grid is valid")
+}
+
+/// Times SKIP and INHERIT on the collapsed grid, prints the table and returns the section of
+/// `docs/bench.md` (its own command and load, since a filtered run rewrites it alone).
+fn grid_section() -> String {
+    let load_before = load_average();
+    let scene = collapsed_grid();
+    let title = scene.title();
+    println!("\n{title}");
+    let configs = grid_configs();
+    let reports: Vec<Report> = configs.iter().map(|c| report_of(c, &scene)).collect();
+    let measured = measure(&scene, &configs);
+    let load_after = load_average();
+    let skip = measured[0].median.as_secs_f64();
+    let mut table = String::from(
+        "| configuration | ns/vertex | vs SKIP | per pass | spread (IQR) | inherited | fallback |\n\
+         |---|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for ((config, m), report) in configs.iter().zip(&measured).zip(&reports) {
+        writeln!(
+            table,
+            "| {} | {:.2} | {:.2}x | {} | {:.1}% | {} | {} |",
+            config.name,
+            ns(m.median) / scene.vertices() as f64,
+            m.median.as_secs_f64() / skip,
+            human(m.median),
+            100.0 * m.spread,
+            report.inherited_vertices,
+            report.fallback_vertices
+        )
+        .unwrap();
+    }
+    let ratio = measured[1].median.as_secs_f64() / skip;
+    let goal = format!(
+        "Goal: INHERIT within 3x SKIP's time. Measured {ratio:.2}x: {}.",
+        if ratio <= 3.0 { "met" } else { "not met" }
+    );
+    print!("{table}");
+    println!("{goal}");
+
+    let mut md = format!(
+        "{GRID_HEADING}: {} vertices, {} triangles\n\n",
+        scene.vertices(),
+        scene.triangles()
+    );
+    writeln!(
+        md,
+        "A flat grid whose UVs collapse to one point everywhere but on an island of {ISLAND_SIDE} x \
+         {ISLAND_SIDE} vertices in a corner. SKIP gives every vertex without a tangent of its own the fallback frame; \
+         INHERIT spreads the island's tangents across the grid, one ring of vertices at a time ({} rings \
+         to the farthest vertex). Reproduce this section alone (it rewrites only this section):\n\n\
+         ```text\n{COMMAND} -- grid\n```\n\n\
+         Measured on {}. Load average (1, 5, 15 min): {load_before} at the start, {load_after} at the end. \
+         {}; each call allocates its scratch.\n",
+        GRID_SIDE - ISLAND_SIDE,
+        machine(),
+        samples_of(&measured),
+    )
+    .unwrap();
+    md.push_str(&table);
+    writeln!(md, "\n{goal}\n").unwrap();
+    md
+}
+
+/// "N samples per configuration", from the first configuration's samples.
+fn samples_of(measured: &[Measured]) -> String {
+    format!("{} samples per configuration", measured[0].samples)
+}
+
+/// `doc` with its collapsed grid section replaced by `section`, or `section` inserted before the
+/// comparison with mikktspace.c (at the end when that is absent).
+fn with_grid_section(doc: &str, section: &str) -> String {
+    let start = doc.find(GRID_HEADING);
+    let insert_at = start
+        .or_else(|| doc.find("## MIKKTSPACE against mikktspace.c"))
+        .unwrap_or(doc.len());
+    let end = match start {
+        Some(start) => doc[start + 1..]
+            .find("\n## ")
+            .map_or(doc.len(), |at| start + 1 + at + 1),
+        None => insert_at,
+    };
+    format!("{}{section}{}", &doc[..insert_at], &doc[end..])
 }

@@ -222,6 +222,9 @@ typedef struct tbasis_report {
 // component overflows float.
 #define TBASIS_ERROR_INVALID_FRAME 17
 
+// `tbasis_split_corners`: the mesh would need more than 2^32 vertices, beyond 32-bit indices.
+#define TBASIS_ERROR_TOO_MANY_VERTICES 18
+
 
 
 
@@ -298,6 +301,66 @@ tbasis_status tbasis_generate_corners(const struct tbasis_mesh *mesh,
                                       size_t tangents_stride,
                                       struct tbasis_report *report);
 
+// Splits the vertices whose corners carry different tangents, so that per-corner tangents (from
+// `tbasis_generate_corners`) can be drawn as an indexed mesh: two corners of a vertex share an
+// output vertex exactly when their tangents have the same bits, all four floats. Every vertex
+// keeps its index for the corners that carry its first tangent in index order; each further
+// distinct tangent of a vertex becomes a new vertex `vertex_count + j`, in the order of first
+// appearance, which copies vertex `sources[j]` (`tbasis_copy_split_vertices` copies any
+// attribute). Takes time linear in the corner count.
+//
+// With `C` corners (`index_count`, or `vertex_count` when `mesh->indices` is NULL):
+//
+// - `mesh`: as for `tbasis_generate` (only its vertex count and indices are read here, but all
+//   its buffers are checked);
+// - `corner_tangents`: `(C - 1) * corner_tangents_stride + 16` bytes, float x, y, z, w per corner;
+// - `corner_tangents_stride`: at least 16;
+// - `new_indices`: room for `C` `uint32_t`, always 32-bit (a new index buffer when the mesh is
+//   unindexed): corner `i` is drawn with vertex `new_indices[i]`;
+// - `sources`: room for `C` `uint32_t` (a mesh never appends more vertices than it has corners);
+//   the first `*appended_count` are written;
+// - `appended_count`: receives the number of vertices appended; the mesh then has
+//   `vertex_count + *appended_count` vertices.
+//
+// The outputs must share no byte with each other, the mesh's buffers or `corner_tangents`.
+//
+// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
+// `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY`,
+// `_TOO_MANY_VERTICES` (`vertex_count + *appended_count` would exceed 2^32, so the new indices
+// would not fit 32 bits) or `_INTERNAL`. On any error no output byte has been written.
+//
+// # Safety
+// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
+tbasis_status tbasis_split_corners(const struct tbasis_mesh *mesh,
+                                   const void *corner_tangents,
+                                   size_t corner_tangents_stride,
+                                   uint32_t *new_indices,
+                                   uint32_t *sources,
+                                   size_t *appended_count);
+
+// Fills the vertices `tbasis_split_corners` appended in one attribute buffer: element
+// `vertex_count + j` becomes a copy of element `sources[j]`, for `j < appended_count`. Call it once
+// per attribute (positions, normals, UVs, colours, joints, weights, morph targets...).
+//
+// - `attribute`: `(vertex_count + appended_count - 1) * stride + element_size` bytes, elements of
+//   `element_size` bytes `stride` bytes apart: room for the appended vertices after the others;
+// - `stride`: at least `element_size`;
+// - `sources`, `appended_count`: as `tbasis_split_corners` returned them; every source below
+//   `vertex_count`, and `sources` outside the address range of `attribute`.
+//
+// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
+// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error no byte has been
+// written.
+//
+// # Safety
+// `attribute` must be writable and `sources` readable for the bytes documented above.
+tbasis_status tbasis_copy_split_vertices(void *attribute,
+                                         size_t stride,
+                                         size_t element_size,
+                                         size_t vertex_count,
+                                         const uint32_t *sources,
+                                         size_t appended_count);
+
 // Drop-in for the original listing's `CalculateTangentArray`, with its packed layouts: `vertex`
 // and `normal` hold 3 floats per vertex, `texcoord` 2, `triangle` 3 `uint16_t` per triangle,
 // `tangent` receives 4 floats per vertex (`vertex_count * 16` bytes). Same results, bit for bit
@@ -318,13 +381,17 @@ tbasis_status tbasis_calculate_tangent_array(long vertex_count,
                                              float *tangent);
 
 // Bytes of `options->scratch` a `tbasis_generate` or `tbasis_generate_corners` call on `mesh`
-// with `options` needs, 0 when the mesh is empty:
+// with `options` needs, 0 when the mesh is empty. With `V = vertex_count` and `C` corners
+// (`index_count`, or `vertex_count` when unindexed):
 //
-// - per-vertex methods: `vertex_count * 29 + 3` for both calls, whatever `index_count` (28 bytes
-//   of tangent sums and a flag byte per vertex, 3 for alignment; per corner nothing: the corner
-//   call keeps each vertex's frames in its sums);
-// - `TBASIS_METHOD_MIKKTSPACE`: with `C` corners (`index_count`, or `vertex_count` when
-//   unindexed), `T = C / 3` triangles and `V = vertex_count`:
+// - per-vertex methods, policies LEGACY, SKIP and REJECT: `29*V + 3` for both calls, whatever
+//   `C` (28 bytes of tangent sums and a flag byte per vertex, 3 for alignment; per corner
+//   nothing: the corner call keeps each vertex's frames in its sums);
+// - per-vertex methods, policy INHERIT (the default): `37*V + 4*C + 3`, the same plus the
+//   adjacency that spreads tangents to the vertices that have none, in time linear in `C`: per
+//   vertex a list start and a queue slot, per corner its triangle, 4 bytes each (8 each, so
+//   `45*V + 8*C + 3`, when `V` or `C` exceeds `UINT32_MAX`);
+// - `TBASIS_METHOD_MIKKTSPACE`, with `T = C / 3` triangles:
 //   `57*C + 216*T + 4*V + 4*max(2*V + 2, C) + 75` (about 130 bytes per corner), 0 when `V` is 0.
 //
 // Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.

@@ -14,6 +14,7 @@ use crate::generate::{generate_corners_into, generate_into, scratch_bytes, scrat
 use crate::mesh::{Indices, Mesh, Output};
 use crate::options::Options;
 use crate::report::Report;
+use crate::seam_split::{copy_split_vertices, split_corners};
 use crate::status::Error;
 use crate::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
 use crate::transform::{from_tangent_space, to_tangent_space};
@@ -64,6 +65,8 @@ pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
 /// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result
 /// component overflows float.
 pub const TBASIS_ERROR_INVALID_FRAME: tbasis_status = 17;
+/// `tbasis_split_corners`: the mesh would need more than 2^32 vertices, beyond 32-bit indices.
+pub const TBASIS_ERROR_TOO_MANY_VERTICES: tbasis_status = 18;
 
 /// `index_type`: 16-bit indices.
 pub const TBASIS_INDEX_U16: u32 = 1;
@@ -481,6 +484,136 @@ pub unsafe extern "C" fn tbasis_generate_corners(
     })
 }
 
+/// Splits the vertices whose corners carry different tangents, so that per-corner tangents (from
+/// `tbasis_generate_corners`) can be drawn as an indexed mesh: two corners of a vertex share an
+/// output vertex exactly when their tangents have the same bits, all four floats. Every vertex
+/// keeps its index for the corners that carry its first tangent in index order; each further
+/// distinct tangent of a vertex becomes a new vertex `vertex_count + j`, in the order of first
+/// appearance, which copies vertex `sources[j]` (`tbasis_copy_split_vertices` copies any
+/// attribute). Takes time linear in the corner count.
+///
+/// With `C` corners (`index_count`, or `vertex_count` when `mesh->indices` is NULL):
+///
+/// - `mesh`: as for `tbasis_generate` (only its vertex count and indices are read here, but all
+///   its buffers are checked);
+/// - `corner_tangents`: `(C - 1) * corner_tangents_stride + 16` bytes, float x, y, z, w per corner;
+/// - `corner_tangents_stride`: at least 16;
+/// - `new_indices`: room for `C` `uint32_t`, always 32-bit (a new index buffer when the mesh is
+///   unindexed): corner `i` is drawn with vertex `new_indices[i]`;
+/// - `sources`: room for `C` `uint32_t` (a mesh never appends more vertices than it has corners);
+///   the first `*appended_count` are written;
+/// - `appended_count`: receives the number of vertices appended; the mesh then has
+///   `vertex_count + *appended_count` vertices.
+///
+/// The outputs must share no byte with each other, the mesh's buffers or `corner_tangents`.
+///
+/// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
+/// `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY`,
+/// `_TOO_MANY_VERTICES` (`vertex_count + *appended_count` would exceed 2^32, so the new indices
+/// would not fit 32 bits) or `_INTERNAL`. On any error no output byte has been written.
+///
+/// # Safety
+/// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_split_corners(
+    mesh: *const tbasis_mesh,
+    corner_tangents: *const c_void,
+    corner_tangents_stride: usize,
+    new_indices: *mut u32,
+    sources: *mut u32,
+    appended_count: *mut usize,
+) -> tbasis_status {
+    boundary(|| {
+        if mesh.is_null() || appended_count.is_null() {
+            return Err(Error::NullPointer);
+        }
+        let views = mesh_views(&ptr::read_unaligned(mesh))?;
+        let corners = views.corner_count();
+        let tangents = read_view::<[f32; 4]>(corner_tangents, corner_tangents_stride, corners)?;
+        let mut indices_out = write_view::<u32>(new_indices.cast(), size_of::<u32>(), corners)?;
+        let mut sources_out = write_view::<u32>(sources.cast(), size_of::<u32>(), corners)?;
+        check_buffer(appended_count.cast(), 1, size_of::<usize>(), 1)?;
+        let count_out = Footprint {
+            start: appended_count as usize,
+            stride: size_of::<usize>(),
+            size: size_of::<usize>(),
+            count: 1,
+        };
+        let written = [indices_out.footprint(), sources_out.footprint(), count_out];
+        check_written(&views, &written.map(Some))?;
+        if written.iter().any(|w| w.overlaps(&tangents.footprint())) {
+            return Err(Error::Overlap);
+        }
+
+        let split = split_corners(&views, &tangents)?;
+        for (k, &index) in split.indices.iter().enumerate() {
+            indices_out.set(k, index);
+        }
+        for (j, &source) in split.sources.iter().enumerate() {
+            sources_out.set(j, source);
+        }
+        ptr::write_unaligned(appended_count, split.sources.len());
+        Ok(())
+    })
+}
+
+/// Fills the vertices `tbasis_split_corners` appended in one attribute buffer: element
+/// `vertex_count + j` becomes a copy of element `sources[j]`, for `j < appended_count`. Call it once
+/// per attribute (positions, normals, UVs, colours, joints, weights, morph targets...).
+///
+/// - `attribute`: `(vertex_count + appended_count - 1) * stride + element_size` bytes, elements of
+///   `element_size` bytes `stride` bytes apart: room for the appended vertices after the others;
+/// - `stride`: at least `element_size`;
+/// - `sources`, `appended_count`: as `tbasis_split_corners` returned them; every source below
+///   `vertex_count`, and `sources` outside the address range of `attribute`.
+///
+/// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
+/// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error no byte has been
+/// written.
+///
+/// # Safety
+/// `attribute` must be writable and `sources` readable for the bytes documented above.
+#[no_mangle]
+pub unsafe extern "C" fn tbasis_copy_split_vertices(
+    attribute: *mut c_void,
+    stride: usize,
+    element_size: usize,
+    vertex_count: usize,
+    sources: *const u32,
+    appended_count: usize,
+) -> tbasis_status {
+    boundary(|| {
+        if element_size > stride {
+            return Err(Error::InvalidStride);
+        }
+        let total = vertex_count.checked_add(appended_count).ok_or(Error::SizeOverflow)?;
+        let source_view = read_view::<u32>(sources.cast(), size_of::<u32>(), appended_count)?;
+        if element_size == 0 || appended_count == 0 {
+            return Ok(());
+        }
+        check_buffer(attribute, stride, total, element_size)?;
+        let span = span_bytes(total, stride, element_size)?;
+        let whole_range = Footprint {
+            start: attribute as usize,
+            stride: span,
+            size: span,
+            count: 1,
+        };
+        if whole_range.overlaps(&source_view.footprint()) {
+            return Err(Error::Overlap);
+        }
+        // `sources` may be unaligned: read through its view into an aligned copy.
+        let mut aligned = Vec::new();
+        aligned
+            .try_reserve_exact(appended_count)
+            .map_err(|_| Error::OutOfMemory)?;
+        aligned.extend((0..appended_count).map(|j| source_view.get(j)));
+        // The slice is formed only once it is known to share no byte with `sources`.
+        let bytes = core::slice::from_raw_parts_mut(attribute.cast::<u8>(), span);
+        copy_split_vertices(bytes, stride, element_size, vertex_count, &aligned)
+    })
+}
+
 /// Drop-in for the original listing's `CalculateTangentArray`, with its packed layouts: `vertex`
 /// and `normal` hold 3 floats per vertex, `texcoord` 2, `triangle` 3 `uint16_t` per triangle,
 /// `tangent` receives 4 floats per vertex (`vertex_count * 16` bytes). Same results, bit for bit
@@ -521,13 +654,17 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 }
 
 /// Bytes of `options->scratch` a `tbasis_generate` or `tbasis_generate_corners` call on `mesh`
-/// with `options` needs, 0 when the mesh is empty:
+/// with `options` needs, 0 when the mesh is empty. With `V = vertex_count` and `C` corners
+/// (`index_count`, or `vertex_count` when unindexed):
 ///
-/// - per-vertex methods: `vertex_count * 29 + 3` for both calls, whatever `index_count` (28 bytes
-///   of tangent sums and a flag byte per vertex, 3 for alignment; per corner nothing: the corner
-///   call keeps each vertex's frames in its sums);
-/// - `TBASIS_METHOD_MIKKTSPACE`: with `C` corners (`index_count`, or `vertex_count` when
-///   unindexed), `T = C / 3` triangles and `V = vertex_count`:
+/// - per-vertex methods, policies LEGACY, SKIP and REJECT: `29*V + 3` for both calls, whatever
+///   `C` (28 bytes of tangent sums and a flag byte per vertex, 3 for alignment; per corner
+///   nothing: the corner call keeps each vertex's frames in its sums);
+/// - per-vertex methods, policy INHERIT (the default): `37*V + 4*C + 3`, the same plus the
+///   adjacency that spreads tangents to the vertices that have none, in time linear in `C`: per
+///   vertex a list start and a queue slot, per corner its triangle, 4 bytes each (8 each, so
+///   `45*V + 8*C + 3`, when `V` or `C` exceeds `UINT32_MAX`);
+/// - `TBASIS_METHOD_MIKKTSPACE`, with `T = C / 3` triangles:
 ///   `57*C + 216*T + 4*V + 4*max(2*V + 2, C) + 75` (about 130 bytes per corner), 0 when `V` is 0.
 ///
 /// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
@@ -548,7 +685,7 @@ pub unsafe extern "C" fn tbasis_scratch_size(mesh: *const tbasis_mesh, options: 
         } else {
             mesh.index_count
         };
-        scratch_bytes(options.method, mesh.vertex_count, corner_count).ok_or(Error::SizeOverflow)
+        scratch_bytes(&options, mesh.vertex_count, corner_count).ok_or(Error::SizeOverflow)
     });
     size.unwrap_or(usize::MAX)
 }
@@ -703,6 +840,7 @@ mod tests {
             TBASIS_ERROR_INVALID_COUNT,
             TBASIS_ERROR_INTERNAL,
             TBASIS_ERROR_INVALID_FRAME,
+            TBASIS_ERROR_TOO_MANY_VERTICES,
         ];
         let rust_values: Vec<u32> = Error::ALL.iter().map(|e| e.code()).collect();
         assert_eq!(c_values.to_vec(), rust_values);

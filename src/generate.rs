@@ -43,7 +43,7 @@ pub fn generate(mesh: &Mesh, options: &Options, output: &mut Output) -> Result<R
     Ok(report)
 }
 
-/// [`generate`] with optional caller scratch (at least [`scratch_size`] bytes, any alignment;
+/// [`generate`] with optional caller scratch (at least [`scratch_size_for`] bytes, any alignment;
 /// then the call allocates nothing) and the report written to `report`, also when the call fails
 /// with [`Error::DegenerateUv`].
 pub fn generate_into(
@@ -69,8 +69,11 @@ pub fn generate_into(
         });
     }
 
-    // 2. Working memory: per-vertex sums and flags, in the caller's scratch or on the heap.
-    scratch::with_scratch(scratch, vertex_count, |scratch| {
+    // 2. Working memory: per-vertex sums and flags (and INHERIT's adjacency), in the caller's
+    //    scratch or on the heap.
+    let links =
+        scratch::link_bytes(options.degenerate_policy, vertex_count, mesh.corner_count()).ok_or(Error::SizeOverflow)?;
+    scratch::with_scratch(scratch, vertex_count, links, |scratch| {
         resolve_vertices(mesh, options, scratch, Some(output), report)
     })
 }
@@ -86,6 +89,26 @@ pub(crate) fn resolve_vertices(
     mut output: Option<&mut Output>,
     report: &mut Report,
 ) -> Result<(), Error> {
+    let deferred = resolve_measured(mesh, options, scratch, output.as_deref_mut(), report)?;
+
+    // 6. INHERIT: vertices left without a tangent take their neighbours', ring by ring.
+    if deferred > 0 {
+        let mut whole = output.map(Output::whole);
+        resolve::write_inherited(mesh, scratch, whole.as_mut(), report);
+    }
+    Ok(())
+}
+
+/// Steps 3 to 5 of [`generate_into`]: every vertex whose own triangles give it a frame is
+/// resolved (and written); returns how many wait for step 6 (policy INHERIT). `report` gets what
+/// was found, also when REJECT refuses the mesh.
+pub(crate) fn resolve_measured(
+    mesh: &Mesh,
+    options: &Options,
+    scratch: &mut Scratch,
+    output: Option<&mut Output>,
+    report: &mut Report,
+) -> Result<usize, Error> {
     let vertex_count = mesh.vertex_count();
     // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners;
     //    with several workers, each adds to its own range of vertices, in triangle order.
@@ -125,10 +148,10 @@ pub(crate) fn resolve_vertices(
         (written, deferred)
     };
     let (written, deferred) = if workers == 1 {
-        write_range(scratch, output.as_deref_mut().map(Output::whole).as_mut())
+        write_range(scratch, output.map(Output::whole).as_mut())
     } else {
         let ends = parallel::range_ends(vertex_count, workers);
-        let outputs: Vec<Option<OutputPart>> = match output.as_deref_mut() {
+        let outputs: Vec<Option<OutputPart>> = match output {
             Some(output) => output.split(&ends).into_iter().map(Some).collect(),
             None => ends.iter().map(|_| None).collect(),
         };
@@ -141,14 +164,8 @@ pub(crate) fn resolve_vertices(
             })
     };
     found.merge(&written);
-
-    // 6. INHERIT: vertices left without a tangent take their neighbours', ring by ring.
-    if deferred > 0 {
-        let mut whole = output.map(Output::whole);
-        resolve::write_inherited(mesh, scratch, whole.as_mut(), &mut found);
-    }
     *report = found;
-    Ok(())
+    Ok(deferred)
 }
 
 /// Computes a unit tangent and handedness for every triangle corner: `tangents[3t + k]` for corner
@@ -161,7 +178,7 @@ pub(crate) fn resolve_vertices(
 /// longer): there a corner of a non-degenerate triangle on the other side gets the frame of that
 /// side's own sum, with its `w`, when the sum passes the test the vertex's passed. Corners of
 /// degenerate triangles, of fold vertices that inherited or fell back, and all corners under
-/// policy LEGACY get their vertex's frame. Same scratch ([`scratch_size`]) and report as
+/// policy LEGACY get their vertex's frame. Same scratch ([`scratch_size_for`]) and report as
 /// [`generate_into`]; `threads` changes no bit. On error nothing in `tangents` has been written.
 ///
 /// ```
@@ -235,23 +252,27 @@ fn with_bytes<R>(
 }
 
 /// Bytes of caller scratch a [`generate_into`] or [`generate_corners_into`] call on `mesh` with
-/// `options` needs (any alignment): for method MIKKTSPACE
-/// `4 * mikktspace words(vertex_count, corner_count) + 3`, otherwise [`scratch_size`] of the
-/// vertex count. `None` when that overflows.
+/// `options` needs (any alignment), 0 when the mesh has no vertices: for method MIKKTSPACE
+/// `4 * mikktspace words(vertex_count, corner_count) + 3`; for the other methods with policy
+/// INHERIT `vertex_count * 37 + corner_count * 4 + 3` ([`scratch_size`] plus the adjacency that
+/// spreads tangents: per vertex a list start and a queue slot, per corner its triangle, 4 bytes
+/// each, or 8 when the vertex or corner count exceeds `u32::MAX`); otherwise [`scratch_size`] of
+/// the vertex count. `None` when that overflows.
 pub fn scratch_size_for(mesh: &Mesh, options: &Options) -> Option<usize> {
-    scratch_bytes(options.method, mesh.vertex_count(), mesh.corner_count())
+    scratch_bytes(options, mesh.vertex_count(), mesh.corner_count())
 }
 
 /// [`scratch_size_for`] from the counts alone.
-pub(crate) fn scratch_bytes(method: Method, vertex_count: usize, corner_count: usize) -> Option<usize> {
-    match method {
+pub(crate) fn scratch_bytes(options: &Options, vertex_count: usize, corner_count: usize) -> Option<usize> {
+    match options.method {
         Method::Mikktspace => mikktspace::scratch_bytes(vertex_count, corner_count),
-        _ => vertex_corners::scratch_size(vertex_count),
+        _ => vertex_corners::scratch_size(options.degenerate_policy, vertex_count, corner_count),
     }
 }
 
-/// Bytes of caller scratch a call on `vertex_count` vertices needs:
-/// `vertex_count * 29 + 3` (0 when empty); `None` when that overflows.
+/// Bytes of caller scratch a call on `vertex_count` vertices needs under policies LEGACY, SKIP and
+/// REJECT: `vertex_count * 29 + 3` (0 when empty); `None` when that overflows. Policy INHERIT and
+/// method MIKKTSPACE need more: see [`scratch_size_for`].
 pub fn scratch_size(vertex_count: usize) -> Option<usize> {
     scratch::scratch_size(vertex_count)
 }

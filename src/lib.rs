@@ -32,6 +32,7 @@ mod parallel;
 mod report;
 mod resolve;
 mod scratch;
+mod seam_split;
 mod status;
 #[allow(unsafe_code)]
 mod strided;
@@ -45,6 +46,7 @@ pub use generate::{generate, generate_corners, generate_corners_into, generate_i
 pub use mesh::{Indices, Mesh, Output};
 pub use options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
 pub use report::Report;
+pub use seam_split::{copy_split_vertices, split_corners, SeamSplit};
 pub use status::Error;
 pub use strided::{span_bytes, Element, Strided, StridedMut};
 pub use transform::{from_tangent_space, to_tangent_space};

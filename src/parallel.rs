@@ -174,7 +174,9 @@ mod tests {
         assert_eq!(none, (0..6).map(|p| (p * 10, true)).collect::<Vec<_>>());
         // Every other spawn fails: those parts run on the caller, the rest on their threads.
         let attempt = std::sync::atomic::AtomicUsize::new(0);
-        let alternate = run_spawning(parts, on_caller, || attempt.fetch_add(1, std::sync::atomic::Ordering::Relaxed) % 2 == 1);
+        let alternate = run_spawning(parts, on_caller, || {
+            attempt.fetch_add(1, std::sync::atomic::Ordering::Relaxed) % 2 == 1
+        });
         let expected: Vec<_> = (0..6).map(|p| (p * 10, p == 0 || p % 2 == 1)).collect();
         assert_eq!(alternate, expected);
     }

@@ -1,10 +1,13 @@
-//! The working memory of one call: per-vertex sums and flags, from the caller or the heap.
+//! The working memory of one call: per-vertex sums and flags, and for policy INHERIT room for its
+//! adjacency, from the caller or the heap.
 #![forbid(unsafe_code)]
 
 use core::mem::{align_of, size_of};
 
 use glam::Vec3;
 
+use crate::inherit;
+use crate::options::DegeneratePolicy;
 use crate::status::Error;
 use crate::strided::pod_prefix_mut;
 
@@ -42,6 +45,8 @@ pub mod flag {
     /// Per-corner output: `secondary` holds the frame of the mirror-fold side the vertex's own
     /// frame does not come from (its `w` is minus the vertex's).
     pub(crate) const SIDE_FRAME: u8 = 32;
+    /// Policy INHERIT: the vertex is queued for the current ring (cleared when the ring ends).
+    pub(crate) const CANDIDATE: u8 = 64;
 }
 
 impl VertexSums {
@@ -70,15 +75,31 @@ impl VertexSums {
 /// Scratch bytes per vertex: one [`VertexSums`] and one flag byte.
 pub(crate) const BYTES_PER_VERTEX: usize = size_of::<VertexSums>() + 1;
 
-/// Bytes a call on `vertex_count` vertices needs: `vertex_count * 29 + 3` (the 3 let the sums start
-/// at a 4-byte boundary wherever the caller's bytes begin), 0 for an empty mesh. `None` on overflow.
+/// Bytes a call on `vertex_count` vertices needs under every policy but INHERIT:
+/// `vertex_count * 29 + 3` (the 3 let the sums start at a 4-byte boundary wherever the caller's
+/// bytes begin), 0 for an empty mesh. `None` on overflow.
 pub fn scratch_size(vertex_count: usize) -> Option<usize> {
+    scratch_size_with(vertex_count, 0)
+}
+
+/// [`scratch_size`] plus `link_bytes` (see [`link_bytes`]).
+pub(crate) fn scratch_size_with(vertex_count: usize, link_bytes: usize) -> Option<usize> {
     if vertex_count == 0 {
         return Some(0);
     }
     vertex_count
         .checked_mul(BYTES_PER_VERTEX)?
+        .checked_add(link_bytes)?
         .checked_add(align_of::<VertexSums>() - 1)
+}
+
+/// Bytes a per-vertex call with `policy` needs besides the sums and flags: policy INHERIT's
+/// adjacency ([`inherit::link_bytes`]), nothing for the other policies or an empty mesh.
+pub(crate) fn link_bytes(policy: DegeneratePolicy, vertex_count: usize, corner_count: usize) -> Option<usize> {
+    if policy != DegeneratePolicy::Inherit || vertex_count == 0 {
+        return Some(0);
+    }
+    inherit::link_bytes(vertex_count, corner_count)
 }
 
 /// Where vertex `v` sits in a range of `len` vertices starting at `first`, if the range holds it.
@@ -96,6 +117,34 @@ pub struct Scratch<'s> {
     pub flags: &'s mut [u8],
     /// The first vertex of the range: vertex `v` is at `v - first`.
     pub first: usize,
+    /// Room for policy INHERIT's adjacency (whole-mesh scratch only).
+    pub links: Links<'s>,
+}
+
+/// Memory for policy INHERIT's adjacency, which only a call that defers some vertex fills.
+pub enum Links<'s> {
+    /// None: another policy, or one worker's range.
+    None,
+    /// Caller bytes past the sums (4-byte aligned), any contents.
+    Caller(&'s mut [u8]),
+    /// Heap bytes reserved (`.1` of them) before the call writes anything, so that using them
+    /// cannot fail halfway; not written while no vertex needs them.
+    Heap(&'s mut Vec<u8>, usize),
+}
+
+impl Links<'_> {
+    /// The bytes (any contents), at least as many as were asked for: the heap's filled up to
+    /// their reserved length without reallocating.
+    pub fn bytes(&mut self) -> &mut [u8] {
+        match self {
+            Links::None => &mut [],
+            Links::Caller(bytes) => bytes,
+            Links::Heap(vec, len) => {
+                vec.resize(*len, 0);
+                vec
+            }
+        }
+    }
 }
 
 impl<'s> Scratch<'s> {
@@ -118,6 +167,7 @@ impl<'s> Scratch<'s> {
                 sums: part_sums,
                 flags: part_flags,
                 first,
+                links: Links::None,
             });
             (sums, flags, first) = (rest_sums, rest_flags, end);
         }
@@ -130,12 +180,14 @@ impl<'s> Scratch<'s> {
 pub struct OwnedScratch {
     sums: Vec<VertexSums>,
     flags: Vec<u8>,
+    links: Vec<u8>,
+    links_len: usize,
 }
 
 impl OwnedScratch {
-    /// Allocates zeroed arrays for `vertex_count` vertices, failing with `OutOfMemory` rather than
-    /// aborting.
-    pub fn allocate(vertex_count: usize) -> Result<Self, Error> {
+    /// Allocates zeroed arrays for `vertex_count` vertices and reserves `link_bytes` for the
+    /// adjacency (3 more, to align it), failing with `OutOfMemory` rather than aborting.
+    pub fn allocate(vertex_count: usize, link_bytes: usize) -> Result<Self, Error> {
         let mut owned = OwnedScratch::default();
         owned
             .sums
@@ -145,6 +197,13 @@ impl OwnedScratch {
             .flags
             .try_reserve_exact(vertex_count)
             .map_err(|_| Error::OutOfMemory)?;
+        if link_bytes > 0 {
+            owned.links_len = link_bytes.checked_add(3).ok_or(Error::OutOfMemory)?;
+            owned
+                .links
+                .try_reserve_exact(owned.links_len)
+                .map_err(|_| Error::OutOfMemory)?;
+        }
         owned.sums.resize(vertex_count, VertexSums::default());
         owned.flags.resize(vertex_count, 0);
         Ok(owned)
@@ -156,30 +215,50 @@ impl OwnedScratch {
             sums: &mut self.sums,
             flags: &mut self.flags,
             first: 0,
+            links: match self.links_len {
+                0 => Links::None,
+                len => Links::Heap(&mut self.links, len),
+            },
         }
     }
 }
 
-/// Runs `job` on zeroed arrays for `vertex_count` vertices: laid out in the caller's `bytes`, or
-/// allocated when there are none.
+/// Runs `job` on zeroed arrays for `vertex_count` vertices, with `link_bytes` of room for the
+/// adjacency ([`link_bytes`]): laid out in the caller's `bytes`, or allocated when there are none.
 pub fn with_scratch<R>(
     bytes: Option<&mut [u8]>,
     vertex_count: usize,
+    link_bytes: usize,
     job: impl FnOnce(&mut Scratch) -> Result<R, Error>,
 ) -> Result<R, Error> {
     match bytes {
-        Some(bytes) => job(&mut carve(bytes, vertex_count)?),
-        None => job(&mut OwnedScratch::allocate(vertex_count)?.scratch()),
+        Some(bytes) => job(&mut carve(bytes, vertex_count, link_bytes)?),
+        None => job(&mut OwnedScratch::allocate(vertex_count, link_bytes)?.scratch()),
     }
 }
 
-/// Lays the arrays for `vertex_count` vertices out in caller memory and zeroes them.
-pub fn carve(bytes: &mut [u8], vertex_count: usize) -> Result<Scratch<'_>, Error> {
+/// Lays the arrays for `vertex_count` vertices and `link_bytes` of adjacency out in caller memory
+/// and zeroes the arrays: the sums, the adjacency (right after them, so 4-byte aligned), the flags.
+pub fn carve(bytes: &mut [u8], vertex_count: usize, link_bytes: usize) -> Result<Scratch<'_>, Error> {
     let (sums, rest) = pod_prefix_mut::<VertexSums>(bytes, vertex_count).ok_or(Error::ScratchTooSmall)?;
+    if rest.len() < link_bytes {
+        return Err(Error::ScratchTooSmall);
+    }
+    let (links, rest) = rest.split_at_mut(link_bytes);
     let flags = rest.get_mut(..vertex_count).ok_or(Error::ScratchTooSmall)?;
     sums.fill(VertexSums::default());
     flags.fill(0);
-    Ok(Scratch { sums, flags, first: 0 })
+    let links = if link_bytes == 0 {
+        Links::None
+    } else {
+        Links::Caller(links)
+    };
+    Ok(Scratch {
+        sums,
+        flags,
+        first: 0,
+        links,
+    })
 }
 
 #[cfg(test)]
@@ -189,16 +268,45 @@ mod tests {
     #[test]
     fn scratch_size_is_enough_at_every_alignment_and_one_byte_less_is_not() {
         for vertex_count in [1usize, 2, 7, 100] {
-            let size = scratch_size(vertex_count).unwrap();
-            let mut buffer = vec![0u8; size + 8];
-            for offset in 0..4 {
-                assert!(carve(&mut buffer[offset..offset + size], vertex_count).is_ok());
+            for link_bytes in [0, 4 * (2 * vertex_count + 9)] {
+                let size = scratch_size_with(vertex_count, link_bytes).unwrap();
+                let mut buffer = vec![0u8; size + 8];
+                for offset in 0..4 {
+                    let scratch = carve(&mut buffer[offset..offset + size], vertex_count, link_bytes).unwrap();
+                    let links = match scratch.links {
+                        Links::None => 0,
+                        Links::Caller(bytes) => {
+                            assert_eq!(bytes.as_ptr() as usize % 4, 0, "adjacency not aligned");
+                            bytes.len()
+                        }
+                        Links::Heap(..) => unreachable!(),
+                    };
+                    assert_eq!(links, link_bytes);
+                }
+                // With the worst alignment, one byte less must fail.
+                let worst = (0..4).find(|o| (buffer[*o..].as_ptr() as usize) % 4 == 1).unwrap();
+                assert!(carve(&mut buffer[worst..worst + size - 1], vertex_count, link_bytes).is_err());
             }
-            // With the worst alignment, one byte less must fail.
-            let worst = (0..4).find(|o| (buffer[*o..].as_ptr() as usize) % 4 == 1).unwrap();
-            assert!(carve(&mut buffer[worst..worst + size - 1], vertex_count).is_err());
         }
         assert_eq!(scratch_size(0), Some(0));
         assert_eq!(scratch_size(usize::MAX), None);
+    }
+
+    #[test]
+    fn inherit_needs_its_adjacency_and_the_other_policies_nothing_more() {
+        for policy in [
+            DegeneratePolicy::Legacy,
+            DegeneratePolicy::Skip,
+            DegeneratePolicy::Reject,
+        ] {
+            assert_eq!(link_bytes(policy, 10, 30), Some(0));
+        }
+        let inherit = DegeneratePolicy::Inherit;
+        assert_eq!(link_bytes(inherit, 0, 30), Some(0));
+        // 4 bytes per entry: a start and a queue slot per vertex, one entry per corner.
+        assert_eq!(link_bytes(inherit, 10, 30), Some(4 * (2 * 10 + 30)));
+        let size = scratch_size_with(10, link_bytes(inherit, 10, 30).unwrap());
+        assert_eq!(size, Some(10 * 37 + 30 * 4 + 3));
+        assert_eq!(link_bytes(inherit, usize::MAX / 2, 30), None);
     }
 }

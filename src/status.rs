@@ -35,18 +35,21 @@ pub enum Error {
     ScratchTooSmall = 13,
     /// `degenerate_threshold` is negative, NaN or infinite.
     InvalidThreshold = 14,
-    /// A count is negative (the legacy signature takes `long`).
+    /// A count is negative (the legacy signature takes `long`), or a Rust slice is shorter or
+    /// longer than the count it must hold.
     InvalidCount = 15,
     /// A bug in the library was caught at the boundary; nothing was written.
     Internal = 16,
     /// A tangent-space transform got a frame that is singular (normal or tangent zero or parallel,
     /// handedness zero) or not finite, a non-finite direction, or a result that overflows a float.
     InvalidFrame = 17,
+    /// A seam split would append vertices whose indices do not fit 32 bits.
+    TooManyVertices = 18,
 }
 
 impl Error {
     /// Every error, in the order of its value.
-    pub const ALL: [Error; 17] = [
+    pub const ALL: [Error; 18] = [
         Error::NullPointer,
         Error::InvalidStride,
         Error::InvalidIndexCount,
@@ -64,6 +67,7 @@ impl Error {
         Error::InvalidCount,
         Error::Internal,
         Error::InvalidFrame,
+        Error::TooManyVertices,
     ];
 
     /// The C status value.
@@ -93,9 +97,10 @@ impl Error {
             Error::OutOfMemory => "out of memory\0",
             Error::ScratchTooSmall => "the scratch buffer is smaller than tbasis_scratch_size\0",
             Error::InvalidThreshold => "degenerate_threshold is negative or not finite\0",
-            Error::InvalidCount => "a count is negative\0",
+            Error::InvalidCount => "a count is negative, or a buffer does not hold the count it must\0",
             Error::Internal => "internal error\0",
             Error::InvalidFrame => "the tangent frame is singular, or an input or the result is not finite\0",
+            Error::TooManyVertices => "the split mesh would need vertex indices beyond 32 bits\0",
         }
     }
 

@@ -329,6 +329,8 @@ unsafe impl Pod for f32 {}
 // SAFETY: as above.
 unsafe impl Pod for [f32; 3] {}
 // SAFETY: as above.
+unsafe impl Pod for [u32; 2] {}
+// SAFETY: as above.
 unsafe impl Pod for [u32; 3] {}
 // SAFETY: as above.
 unsafe impl Pod for [f32; 8] {}

@@ -22,7 +22,7 @@
 
 use crate::generate::resolve_vertices;
 use crate::mesh::Mesh;
-use crate::options::Options;
+use crate::options::{DegeneratePolicy, Options};
 use crate::report::Report;
 use crate::scratch::{self, flag, VertexSums};
 use crate::status::Error;
@@ -37,7 +37,9 @@ pub(crate) fn generate_corners(
     scratch: Option<&mut [u8]>,
     report: &mut Report,
 ) -> Result<(), Error> {
-    scratch::with_scratch(scratch, mesh.vertex_count(), |scratch| {
+    let links = scratch::link_bytes(options.degenerate_policy, mesh.vertex_count(), mesh.corner_count())
+        .ok_or(Error::SizeOverflow)?;
+    scratch::with_scratch(scratch, mesh.vertex_count(), links, |scratch| {
         resolve_vertices(mesh, options, scratch, None, report)?;
         let frames = KeptFrames {
             sums: scratch.sums,
@@ -48,11 +50,10 @@ pub(crate) fn generate_corners(
     })
 }
 
-/// Bytes of caller scratch [`generate_corners`] needs: the per-vertex call's,
-/// [`scratch::scratch_size`] (29 bytes a vertex), whatever the corner count, since each vertex's
-/// frames are kept in its own sums.
-pub(crate) fn scratch_size(vertex_count: usize) -> Option<usize> {
-    scratch::scratch_size(vertex_count)
+/// Bytes of caller scratch [`generate_corners`] needs: the per-vertex call's (29 bytes a vertex,
+/// and policy INHERIT's adjacency), since each vertex's frames are kept in its own sums.
+pub(crate) fn scratch_size(policy: DegeneratePolicy, vertex_count: usize, corner_count: usize) -> Option<usize> {
+    scratch::scratch_size_with(vertex_count, scratch::link_bytes(policy, vertex_count, corner_count)?)
 }
 
 /// What the per-vertex pass kept: each vertex's frame, and at folds its other side's.

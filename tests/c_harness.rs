@@ -2,8 +2,8 @@
 //! under AddressSanitizer + UndefinedBehaviorSanitizer, and under valgrind. Also compiles the
 //! header as strict C99 and C++11 and checks what the shared library exports.
 //!
-//! Tools that are missing skip their test with a message, except when `CI` is set: CI installs
-//! them, so there a missing tool fails the test.
+//! A test that needs a missing tool is ignored, with the tool named, except under CI, where it
+//! fails (`tests/common/needs.rs`).
 #![cfg(target_os = "linux")]
 
 #[path = "common/mod.rs"]
@@ -14,7 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::artifacts::library_dir;
-use common::tools::{missing, run, run_ok};
+use common::needs;
+use common::tools::{run, run_ok};
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off"];
@@ -121,25 +122,14 @@ fn c_harness_passes() {
     run_harness(Command::new(exe), &dir, None);
 }
 
-/// Whether gcc's sanitizer runtimes are installed: a probe must compile, link and run.
-fn sanitizers_available(dir: &Path) -> bool {
-    let probe = dir.join("probe.c");
-    std::fs::write(&probe, "int main(void) { return 0; }\n").expect("write the probe");
-    let exe = dir.join("probe");
-    let mut command = compiler(false, dir);
-    command.args(SANITIZE_FLAGS).arg(&probe).arg("-o").arg(&exe);
-    command.output().is_ok_and(|o| o.status.success()) && Command::new(&exe).status().is_ok_and(|s| s.success())
-}
-
 #[test]
+#[cfg_attr(
+    tbasis_missing_sanitizers,
+    ignore = "needs the ASan and UBSan runtimes (Debian: libasan8, libubsan1)"
+)]
 fn c_harness_passes_under_asan_and_ubsan() {
+    needs::SANITIZERS.require();
     let dir = work_dir("sanitized");
-    if !sanitizers_available(&dir) {
-        return missing(
-            "gcc's AddressSanitizer/UBSan runtime (Debian: libasan8, libubsan1)",
-            "the sanitized harness",
-        );
-    }
     let exe = build_harness(&dir, true);
     let mut command = Command::new(exe);
     // The out-of-memory check asks for ~4e18 bytes and needs malloc to return NULL, not to abort.
@@ -160,10 +150,9 @@ fn c_harness_passes_under_asan_and_ubsan() {
 }
 
 #[test]
+#[cfg_attr(tbasis_missing_valgrind, ignore = "needs valgrind (Debian: valgrind)")]
 fn c_harness_passes_under_valgrind() {
-    if Command::new("valgrind").arg("--version").output().is_err() {
-        return missing("valgrind", "the harness under valgrind");
-    }
+    needs::VALGRIND.require();
     let dir = work_dir("valgrind");
     let exe = build_harness(&dir, false);
     let mut command = Command::new("valgrind");
@@ -208,7 +197,9 @@ int main(void)
 "#;
 
 #[test]
+#[cfg_attr(tbasis_missing_cxx, ignore = "needs a C++ compiler, c++ (Debian: g++)")]
 fn header_compiles_as_cpp() {
+    needs::CXX.require();
     let dir = work_dir("header");
     let lib = library_dir();
     for (cpp, file, standard) in [(true, "probe.cpp", "-std=c++11"), (false, "probe.c", "-std=c99")] {
@@ -244,11 +235,15 @@ fn header_functions() -> BTreeSet<String> {
 }
 
 #[test]
+#[cfg_attr(tbasis_missing_binutils, ignore = "needs nm (Debian: binutils)")]
 fn shared_library_exports_exactly_the_header_functions() {
+    needs::BINUTILS.require();
     let lib = library_dir().join("libtbasis.so");
-    let Ok(output) = Command::new("nm").args(["-D", "--defined-only"]).arg(&lib).output() else {
-        return missing("nm (Debian: binutils)", "the export check");
-    };
+    let output = Command::new("nm")
+        .args(["-D", "--defined-only"])
+        .arg(&lib)
+        .output()
+        .expect("run nm");
     assert!(output.status.success(), "nm -D {}: {}", lib.display(), output.status);
     let exported: BTreeSet<String> = String::from_utf8_lossy(&output.stdout)
         .lines()

@@ -3,17 +3,19 @@
 //! SKIP and INHERIT must succeed with outputs that pass the shared invariant checker; REJECT must
 //! succeed exactly when the mesh has no degenerate triangle and otherwise write nothing; LEGACY
 //! must not panic. The reports of the robust policies must agree with each other. The corpus is not
-//! part of the repository: without it the test says so and passes.
+//! part of the repository: without it the test is ignored, except under CI, where it fails
+//! (`tests/common/needs.rs`).
 
 mod common;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use common::invariants::check_invariants;
 use common::load::{self, MeshFile, Primitive};
+use common::needs;
 use common::run::{run_mesh, Run};
 use tbasis::{DegeneratePolicy, Error, Report};
 
@@ -171,21 +173,10 @@ fn check_file(file: &MeshFile) -> Vec<Failure> {
         .collect()
 }
 
-/// Loads and checks the whole corpus once per test process (both tests read the outcome); `None`
-/// when the corpus is absent.
-fn corpus_failures() -> Option<&'static [Failure]> {
-    static OUTCOME: OnceLock<Option<Vec<Failure>>> = OnceLock::new();
-    OUTCOME.get_or_init(check_corpus).as_deref()
-}
-
-fn check_corpus() -> Option<Vec<Failure>> {
-    let Some(dir) = load::corpus_dir() else {
-        eprintln!(
-            "skipped: no mesh corpus at {}/../shared/meshes/ (MANIFEST.tsv missing)",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        return None;
-    };
+/// Loads and checks every file of the corpus, several at a time.
+fn check_corpus() -> Vec<Failure> {
+    needs::CORPUS.require();
+    let dir = load::corpus_dir().expect("the corpus");
     let started = Instant::now();
     let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
     assert!(!rows.is_empty(), "MANIFEST.tsv lists no mesh");
@@ -220,7 +211,7 @@ fn check_corpus() -> Option<Vec<Failure>> {
         rows.len(),
         started.elapsed()
     );
-    Some(failures)
+    failures
 }
 
 fn assert_none(failures: Vec<&Failure>) {
@@ -230,9 +221,10 @@ fn assert_none(failures: Vec<&Failure>) {
 
 /// Every check on every file of the corpus.
 #[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
+)]
 fn every_corpus_mesh_under_every_policy() {
-    let Some(failures) = corpus_failures() else {
-        return;
-    };
-    assert_none(failures.iter().collect());
+    assert_none(check_corpus().iter().collect());
 }

@@ -1,9 +1,9 @@
-//! Installs the library with `scripts/install.sh` into a fresh prefix and consumes it the ways a C
+//! Installs the library with `scripts/install.sh` into fresh prefixes and consumes it the ways a C
 //! or C++ project would: the installed layout and soname, CMake's `find_package` (shared, static,
 //! version check, moved prefix), pkg-config (shared and static) and the C++ example.
 //!
-//! A missing tool skips the parts that need it with a message naming its Debian package, except
-//! when `CI` is set: CI installs them, so there a missing tool fails the test.
+//! One test per set of tools, so that a missing tool makes only the tests that need it ignored
+//! (under CI, where tools must be installed, failed: `tests/common/needs.rs`).
 #![cfg(target_os = "linux")]
 
 mod common;
@@ -11,8 +11,9 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use common::artifacts::soname;
-use common::tools::{missing, run_ok};
+use common::artifacts::{profile_dir, release, soname};
+use common::needs;
+use common::tools::run_ok;
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
@@ -34,12 +35,13 @@ fn consumer_line() -> String {
 struct Scratch(PathBuf);
 
 impl Scratch {
-    fn new() -> Scratch {
+    /// Named after the test, which runs beside the others in this process.
+    fn new(test: &str) -> Scratch {
         let nanos = std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .expect("clock after 1970")
             .as_nanos();
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("install-{}-{nanos}", std::process::id()));
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("install-{test}-{}-{nanos}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("create the scratch directory");
         Scratch(dir)
     }
@@ -53,15 +55,6 @@ impl Drop for Scratch {
             eprintln!("could not remove {}: {e}", self.0.display());
         }
     }
-}
-
-/// Whether `tool` runs; if not, fails under CI, else says what is skipped.
-fn have(tool: &str, package: &str, part: &str) -> bool {
-    if Command::new(tool).arg("--version").output().is_ok() {
-        return true;
-    }
-    missing(&format!("{tool} (Debian: {package})"), part);
-    false
 }
 
 fn stdout_of(output: &Output) -> String {
@@ -116,22 +109,11 @@ fn check_needed(exe: &Path, statically: bool) {
     }
 }
 
-/// `target/<profile>/`, where this test runs from (`target/<profile>/deps/`), and the profile the
-/// install script takes: the same as this test's, so the nested cargo build reuses what `cargo
-/// test` and the C harness already built instead of building the library a second time.
-fn build_profile() -> (PathBuf, &'static str) {
-    let exe = std::env::current_exe().expect("path of the test executable");
-    let profile_dir = exe
-        .parent()
-        .and_then(Path::parent)
-        .expect("the test executable lives in target/<profile>/deps/");
-    let target_dir = profile_dir.parent().expect("target/<profile>").to_path_buf();
-    let release = profile_dir.file_name().is_some_and(|name| name == "release");
-    (target_dir, if release { "release" } else { "debug" })
-}
-
+/// Installs with the profile of this test, so that the nested cargo build reuses what `cargo test`
+/// and the C harness already built instead of building the library a second time.
 fn install(prefix: &Path) {
-    let (target_dir, profile) = build_profile();
+    let profile = if release() { "release" } else { "debug" };
+    let target_dir = profile_dir().parent().expect("target/<profile>").to_path_buf();
     let mut command = Command::new("bash");
     command.arg(Path::new(CRATE_DIR).join("scripts/install.sh"));
     command.arg(prefix).args(["--profile", profile]);
@@ -189,14 +171,12 @@ fn check_layout(prefix: &Path) {
     }
     assert!(!pc.contains('@'), "tbasis.pc has a template key left:\n{pc}");
 
-    if have("readelf", "binutils", "the soname check") {
-        assert_eq!(
-            dynamic_entries(&real, "SONAME"),
-            [soname()],
-            "soname of {}",
-            real.display()
-        );
-    }
+    assert_eq!(
+        dynamic_entries(&real, "SONAME"),
+        [soname()],
+        "soname of {}",
+        real.display()
+    );
 }
 
 /// Configures and builds `examples/c` against `prefix`, with `-DTBASIS_VERSION_REQUIRED=<version>`
@@ -232,12 +212,6 @@ fn cmake_build(prefix: &Path, build: &Path, version: Option<&str>) -> Result<(),
 
 /// (b) `find_package(tbasis)` from examples/c: both targets, and the version check.
 fn check_cmake(prefix: &Path, work: &Path) {
-    if !(have("cmake", "cmake", "the CMake consumer")
-        && have("make", "make", "the CMake consumer")
-        && have("cc", "gcc", "the CMake consumer"))
-    {
-        return;
-    }
     let build = work.join("cmake");
     cmake_build(prefix, &build, Some(&format!("{MAJOR}.{MINOR}"))).unwrap_or_else(|log| panic!("cmake:\n{log}"));
     // No LD_LIBRARY_PATH: the shared library is found through the RUNPATH CMake gives executables
@@ -274,9 +248,6 @@ fn check_cmake(prefix: &Path, work: &Path) {
 
 /// (f) The CMake package still works after the prefix moves: its paths are relative to itself.
 fn check_cmake_moved(prefix: &Path, work: &Path) {
-    if !(have("cmake", "cmake", "the moved prefix") && have("make", "make", "the moved prefix")) {
-        return;
-    }
     let moved = work.join("moved");
     std::fs::rename(prefix, &moved).expect("move the prefix");
     let build = work.join("cmake-moved");
@@ -314,10 +285,6 @@ fn compile_consumer(flags: &[String], exe: &Path) {
 
 /// (c) and (d): `cc consumer.c $(pkg-config --cflags --libs [--static] tbasis)`.
 fn check_pkg_config(prefix: &Path, work: &Path) {
-    if !(have("pkg-config", "pkg-config", "the pkg-config consumers") && have("cc", "gcc", "the pkg-config consumers"))
-    {
-        return;
-    }
     assert_eq!(pkg_config(prefix, &["--modversion"]), [env!("CARGO_PKG_VERSION")]);
 
     let exe = work.join("consumer-pkg-config");
@@ -346,9 +313,6 @@ fn check_pkg_config(prefix: &Path, work: &Path) {
 
 /// (e) The C++ example against the installed header and shared library.
 fn check_cpp(prefix: &Path, work: &Path) {
-    if !have("c++", "g++", "the C++ example") {
-        return;
-    }
     let lib = prefix.join("lib");
     for standard in ["-std=c++11", "-std=c++17"] {
         let exe = work.join(format!("interleaved{standard}"));
@@ -366,14 +330,51 @@ fn check_cpp(prefix: &Path, work: &Path) {
     }
 }
 
-#[test]
-fn installed_library_is_consumable_from_c_cmake_pkg_config_and_cpp() {
-    let scratch = Scratch::new();
+/// A scratch directory named after `test` with the library installed in its `prefix/`.
+fn installed(test: &str) -> (Scratch, PathBuf) {
+    let scratch = Scratch::new(test);
     let prefix = scratch.0.join("prefix");
     install(&prefix);
+    (scratch, prefix)
+}
+
+#[test]
+#[cfg_attr(tbasis_missing_binutils, ignore = "needs readelf (Debian: binutils)")]
+fn installed_layout_and_soname() {
+    needs::BINUTILS.require();
+    let (_scratch, prefix) = installed("layout");
     check_layout(&prefix);
+}
+
+#[test]
+#[cfg_attr(
+    any(tbasis_missing_cmake, tbasis_missing_binutils),
+    ignore = "needs cmake, make and readelf (Debian: cmake, make, binutils)"
+)]
+fn installed_library_is_consumable_through_cmake() {
+    needs::CMAKE.require();
+    needs::BINUTILS.require();
+    let (scratch, prefix) = installed("cmake");
     check_cmake(&prefix, &scratch.0);
-    check_pkg_config(&prefix, &scratch.0);
-    check_cpp(&prefix, &scratch.0);
     check_cmake_moved(&prefix, &scratch.0);
+}
+
+#[test]
+#[cfg_attr(
+    any(tbasis_missing_pkg_config, tbasis_missing_binutils),
+    ignore = "needs pkg-config and readelf (Debian: pkg-config, binutils)"
+)]
+fn installed_library_is_consumable_through_pkg_config() {
+    needs::PKG_CONFIG.require();
+    needs::BINUTILS.require();
+    let (scratch, prefix) = installed("pkg-config");
+    check_pkg_config(&prefix, &scratch.0);
+}
+
+#[test]
+#[cfg_attr(tbasis_missing_cxx, ignore = "needs a C++ compiler, c++ (Debian: g++)")]
+fn installed_library_is_consumable_from_cpp() {
+    needs::CXX.require();
+    let (scratch, prefix) = installed("cpp");
+    check_cpp(&prefix, &scratch.0);
 }

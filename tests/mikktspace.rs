@@ -25,8 +25,8 @@
 //! per vertex there, this library's debug build about as much; `--release` is 4x faster), so about
 //! 35 s on two idle cores. Debug builds skip corpus meshes above [`DEBUG_MAX_VERTICES`] (only
 //! `FlightHelmet.cc1.glb`, 849k vertices) and say so; `cargo test --release --test mikktspace`
-//! checks them too. Without the corpus the corpus tests say so and pass, except under CI (`CI`
-//! set), where they fail.
+//! checks them too. Without the corpus the corpus tests are ignored, except under CI (`CI` set),
+//! where they fail (`tests/common/needs.rs`).
 
 mod common;
 
@@ -453,20 +453,15 @@ struct CorpusOutcome {
     stored_notes: Vec<String>,
 }
 
-/// Loads and checks the corpus once per test process; `None` when it is absent.
-fn corpus_outcome() -> Option<&'static CorpusOutcome> {
-    static OUTCOME: OnceLock<Option<CorpusOutcome>> = OnceLock::new();
-    OUTCOME.get_or_init(check_corpus).as_ref()
+/// Loads and checks the corpus once per test process.
+fn corpus_outcome() -> &'static CorpusOutcome {
+    static OUTCOME: OnceLock<CorpusOutcome> = OnceLock::new();
+    OUTCOME.get_or_init(check_corpus)
 }
 
-fn check_corpus() -> Option<CorpusOutcome> {
-    let Some(dir) = load::corpus_dir() else {
-        common::tools::missing(
-            &format!("the mesh corpus {}/../shared/meshes/", env!("CARGO_MANIFEST_DIR")),
-            "the corpus comparisons with mikktspace.c",
-        );
-        return None;
-    };
+fn check_corpus() -> CorpusOutcome {
+    common::needs::CORPUS.require();
+    let dir = load::corpus_dir().expect("the corpus");
     let started = Instant::now();
     let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
     assert!(!rows.is_empty(), "MANIFEST.tsv lists no mesh");
@@ -513,7 +508,7 @@ fn check_corpus() -> Option<CorpusOutcome> {
         corners.into_inner(),
         started.elapsed()
     );
-    Some(outcome)
+    outcome
 }
 
 /// Raw V with one thread, `flip_v` with eight: every corpus mesh meets the reference twice. The
@@ -637,10 +632,12 @@ fn check_stored(row: &ManifestRow, subject: &Subject, ours: &[[f32; 4]], stored:
 }
 
 #[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
+)]
 fn every_corpus_mesh_matches_mikktspace_c() {
-    let Some(outcome) = corpus_outcome() else {
-        return;
-    };
+    let outcome = corpus_outcome();
     assert_no_failures("corpus against mikktspace.c", &outcome.bit_exact);
 }
 
@@ -653,10 +650,12 @@ fn every_corpus_mesh_matches_mikktspace_c() {
 /// `mikktspace-exact` files; `mikktspace-near` ones differ by up to 180 degrees where their
 /// exporter welded or re-split vertices). No vertex's corners split in those files.
 #[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
+)]
 fn stored_tangents_agree_with_flip_v() {
-    let Some(outcome) = corpus_outcome() else {
-        return;
-    };
+    let outcome = corpus_outcome();
     for note in &outcome.stored_notes {
         eprintln!("{note}");
     }

@@ -18,8 +18,8 @@ use proptest::prelude::*;
 use proptest::sample::Index;
 use proptest::test_runner::{Config, RngSeed};
 use tbasis::{
-    generate_into, scratch_size, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Report, Strided,
-    StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
+    generate_into, scratch_size, scratch_size_for, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output,
+    Report, Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
 };
 
 /// Values that break naive arithmetic: non-finite, signed zeros, subnormals, extremes.
@@ -465,7 +465,7 @@ fn call(s: &Scenario, mesh: &Mesh, output: &mut Output, report: &mut Report) -> 
     match s.scratch {
         None => generate_into(mesh, &s.options, output, None, report),
         Some((offset, short)) => {
-            let needed = scratch_size(s.mesh.vertex_count()).unwrap();
+            let needed = scratch_size_for(mesh, &s.options).unwrap();
             let size = if short { needed.saturating_sub(4) } else { needed };
             let mut scratch = vec![0u8; offset + size];
             generate_into(mesh, &s.options, output, Some(&mut scratch[offset..]), report)

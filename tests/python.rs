@@ -1,71 +1,149 @@
-//! Runs the Python binding's tests (`bindings/python/tests/`, pytest) against the shared library
-//! cargo builds for this profile.
+//! The Python package (`bindings/python`, maturin + PyO3) as a user gets it: pip builds its wheel
+//! from the source tree, the wheel goes into a fresh virtual environment with the test tools, and
+//! its tests run there from a directory outside the repository, so that they import the installed
+//! package, never the source tree: pytest (`bindings/python/tests/`), then `mypy --strict` on the
+//! tests, the examples and the package's own sources.
 //!
-//! Without python3, numpy or pytest the test is skipped with a message, except when `CI` is set:
-//! CI installs them, so there a missing tool fails the test.
+//! The tests compare the package with this crate's C library (a release build), whose path they
+//! get in `TBASIS_REFERENCE_LIBRARY`. Everything the virtual environment holds comes from the
+//! package index (PyPI). Without python3 and its venv and pip modules the test is ignored, except
+//! under CI, where it fails (`tests/common/needs.rs`).
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::artifacts::library_dir;
-use common::tools::{missing, run};
+use common::artifacts::{build_library, profile_dir};
+use common::needs;
+use common::tools::run_ok;
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
-const PYTHON: &str = "python3";
 
-/// Whether `python3 -c <code>` runs and succeeds.
-fn python_succeeds(code: &str) -> bool {
-    Command::new(PYTHON)
-        .args(["-c", code])
-        .output()
-        .is_ok_and(|output| output.status.success())
-}
-
-/// The tools the binding's tests need that are not installed, in the order to install them.
-fn missing_tools() -> Vec<&'static str> {
-    if !python_succeeds("import sys") {
-        return vec![PYTHON];
-    }
-    [("numpy", "import numpy"), ("pytest", "import pytest")]
-        .into_iter()
-        .filter(|(_, code)| !python_succeeds(code))
-        .map(|(name, _)| name)
-        .collect()
-}
+/// The tools the tests and the example need besides the package, which brings numpy.
+const TEST_TOOLS: [&str; 3] = ["pytest", "mypy", "trimesh"];
 
 #[test]
-fn python_binding_tests_pass() {
-    let absent = missing_tools();
-    if !absent.is_empty() {
-        let how = if absent == [PYTHON] {
-            "Debian: apt-get install python3 python3-pip, then python3 -m pip install numpy pytest"
-        } else {
-            "python3 -m pip install numpy pytest"
-        };
-        return missing(&format!("{} ({how})", absent.join(", ")), "the Python binding's tests");
-    }
-
-    let library = library_dir().join(format!(
+#[cfg_attr(
+    tbasis_missing_python_venv,
+    ignore = "needs python3 with venv and pip (Debian: python3-venv python3-pip)"
+)]
+fn python_package_builds_installs_and_passes_its_tests() {
+    needs::PYTHON_VENV.require();
+    let package = Path::new(CRATE_DIR).join("bindings/python");
+    let work = profile_dir().parent().expect("the target dir").join("python-package");
+    let reference = build_library(true).join(format!(
         "{}tbasis{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
     ));
-    assert!(library.is_file(), "{} was not built", library.display());
+    assert!(reference.is_file(), "{} was not built", reference.display());
 
-    // No bytecode or pytest cache written into the source tree.
-    let mut pytest = Command::new(PYTHON);
-    pytest
-        .args(["-m", "pytest", "-q", "-p", "no:cacheprovider", "bindings/python"])
-        .current_dir(Path::new(CRATE_DIR))
-        .env("TBASIS_LIBRARY", &library)
-        .env("PYTHONDONTWRITEBYTECODE", "1");
-    let output = run(pytest, "python3 -m pytest");
+    let venv = fresh_dir(&work.join("venv"));
+    let mut create = Command::new("python3");
+    create.args(["-m", "venv"]).arg(&venv);
+    run_ok(clean(create), "python3 -m venv");
+    let python = venv_python(&venv);
+    // An old pip builds a copy of the source tree elsewhere, where the path dependency on this
+    // crate does not resolve; a current one builds in place.
+    pip(&python, &["install", "--upgrade", "pip"]);
+
+    // The wheel, built as `pip install ./bindings/python` builds it, into the target dir rather
+    // than the source tree.
+    let wheels = fresh_dir(&work.join("wheels"));
+    let mut build = Command::new(&python);
+    build
+        .args(["-m", "pip", "wheel", "--quiet", "--no-deps", "--wheel-dir"])
+        .arg(&wheels)
+        .arg(&package)
+        .env("CARGO_TARGET_DIR", work.join("target"));
+    run_ok(clean(build), "pip wheel bindings/python");
+    let wheel = only_wheel(&wheels);
+    let name = wheel.file_name().unwrap().to_string_lossy().into_owned();
     assert!(
-        output.status.success(),
-        "pytest bindings/python failed ({}) with TBASIS_LIBRARY={}",
-        output.status,
-        library.display()
+        name.starts_with("tbasis-") && name.contains("-cp39-abi3-"),
+        "{name}: not one abi3 wheel for CPython 3.9 and later"
     );
+    pip(&python, &["install", &wheel.to_string_lossy()]);
+    let mut tools = vec!["install"];
+    tools.extend(TEST_TOOLS);
+    pip(&python, &tools);
+
+    // Outside the repository, so that `import tbasis` can only find the installed package.
+    let outside = fresh_dir(&work.join("run"));
+    let mut pytest = Command::new(&python);
+    pytest
+        .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
+        .arg(package.join("tests"))
+        .current_dir(&outside)
+        .env("TBASIS_REFERENCE_LIBRARY", &reference)
+        // No bytecode written into the source tree.
+        .env("PYTHONDONTWRITEBYTECODE", "1");
+    run_ok(clean(pytest), "pytest bindings/python/tests");
+
+    let mut mypy = Command::new(&python);
+    mypy.args(["-m", "mypy", "--strict", "--config-file"])
+        .arg(package.join("pyproject.toml"))
+        .arg("--cache-dir")
+        .arg(outside.join("mypy-cache"))
+        .arg(package.join("tests"))
+        .arg(package.join("examples"))
+        .current_dir(&outside);
+    run_ok(clean(mypy), "mypy --strict on the tests and examples");
+    let mut sources = Command::new(&python);
+    sources
+        .args(["-m", "mypy", "--strict", "--config-file"])
+        .arg(package.join("pyproject.toml"))
+        .arg("--cache-dir")
+        .arg(outside.join("mypy-cache-sources"))
+        .arg(package.join("python/tbasis"))
+        .current_dir(&outside);
+    run_ok(clean(sources), "mypy --strict on the package's sources");
+}
+
+/// `command` without what cargo's test environment would add to Python's search paths.
+fn clean(mut command: Command) -> Command {
+    command
+        .env_remove("PYTHONPATH")
+        .env_remove("PYTHONHOME")
+        .env_remove("LD_LIBRARY_PATH");
+    command
+}
+
+/// `python -m pip --quiet ARGS`.
+fn pip(python: &Path, args: &[&str]) {
+    let mut command = Command::new(python);
+    command
+        .args(["-m", "pip", "--quiet", "--disable-pip-version-check"])
+        .args(args);
+    run_ok(clean(command), &format!("pip {}", args.join(" ")));
+}
+
+/// The interpreter of a virtual environment.
+fn venv_python(venv: &Path) -> PathBuf {
+    if cfg!(windows) {
+        venv.join("Scripts").join("python.exe")
+    } else {
+        venv.join("bin").join("python")
+    }
+}
+
+/// `dir`, emptied.
+fn fresh_dir(dir: &Path) -> PathBuf {
+    if dir.exists() {
+        std::fs::remove_dir_all(dir).unwrap_or_else(|e| panic!("remove {}: {e}", dir.display()));
+    }
+    std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("create {}: {e}", dir.display()));
+    dir.to_path_buf()
+}
+
+/// The one wheel in `dir`.
+fn only_wheel(dir: &Path) -> PathBuf {
+    let wheels: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("the wheel directory")
+        .map(|entry| entry.expect("a directory entry").path())
+        .filter(|path| path.extension().is_some_and(|ext| ext == "whl"))
+        .collect();
+    assert_eq!(wheels.len(), 1, "expected one wheel in {}: {wheels:?}", dir.display());
+    wheels.into_iter().next().unwrap()
 }

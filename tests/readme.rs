@@ -1,33 +1,100 @@
 //! The README's code blocks marked `<!-- snippet: PATH -->` are taken from PATH, a file that a
 //! test builds or runs: each of their lines appears in that file, in the same order (indentation
 //! aside), so the README cannot drift from code that is exercised.
+//!
+//! A block marked `<!-- example: FILE -->` is a whole program, FILE, followed by a `sh` block that
+//! builds and runs it from the repository root and a `text` block with its output: the test runs
+//! those commands as written and compares the output.
 
 use std::path::Path;
 
+#[cfg(target_os = "linux")]
+#[path = "common/artifacts.rs"]
+#[allow(dead_code)]
+mod artifacts;
+#[cfg(target_os = "linux")]
+#[path = "common/tools.rs"]
+#[allow(dead_code)]
+mod tools;
+
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const MARKER: &str = "<!-- snippet: ";
+const EXAMPLE_MARKER: &str = "<!-- example: ";
+
+/// The name in a marker line `<prefix>NAME -->`.
+fn marker<'a>(line: &'a str, prefix: &str) -> Option<&'a str> {
+    line.strip_prefix(prefix)?.strip_suffix(" -->")
+}
+
+/// The next fenced code block of `lines`: its language and its lines. With `adjacent`, the block
+/// must start on the first line.
+fn next_block<'a>(lines: &mut impl Iterator<Item = &'a str>, adjacent: bool, what: &str) -> (String, Vec<String>) {
+    let fence = if adjacent {
+        lines.next().filter(|l| l.starts_with("```"))
+    } else {
+        lines.find(|l| l.starts_with("```"))
+    };
+    let language = fence
+        .unwrap_or_else(|| panic!("{what} is not followed by a code block"))
+        .trim_start_matches('`')
+        .to_string();
+    let body = lines
+        .by_ref()
+        .take_while(|l| !l.starts_with("```"))
+        .map(str::to_string)
+        .collect();
+    (language, body)
+}
 
 /// `(source path, block lines)` for every marked block.
 fn marked_blocks(readme: &str) -> Vec<(String, Vec<String>)> {
     let mut blocks = Vec::new();
     let mut lines = readme.lines();
     while let Some(line) = lines.next() {
-        let Some(path) = line.strip_prefix(MARKER).and_then(|rest| rest.strip_suffix(" -->")) else {
+        let Some(path) = marker(line, MARKER) else {
             continue;
         };
-        let fence = lines.next().unwrap_or_default();
-        assert!(
-            fence.starts_with("```"),
-            "the marker for {path} is not followed by a code block"
-        );
-        let body = lines
-            .by_ref()
-            .take_while(|l| !l.starts_with("```"))
-            .map(str::to_string)
-            .collect();
+        let (_, body) = next_block(&mut lines, true, &format!("the marker for {path}"));
         blocks.push((path.to_string(), body));
     }
     blocks
+}
+
+/// A whole program in the README, with the commands that build and run it and what it prints.
+struct Example {
+    file: String,
+    source: Vec<String>,
+    commands: Vec<String>,
+    output: Vec<String>,
+}
+
+fn examples(readme: &str) -> Vec<Example> {
+    let mut examples = Vec::new();
+    let mut lines = readme.lines();
+    while let Some(line) = lines.next() {
+        let Some(file) = marker(line, EXAMPLE_MARKER) else {
+            continue;
+        };
+        let what = format!("the example {file}");
+        let (_, source) = next_block(&mut lines, true, &what);
+        let (language, commands) = next_block(&mut lines, false, &what);
+        assert_eq!(
+            language, "sh",
+            "{what}: the block after the program must be its commands"
+        );
+        let (language, output) = next_block(&mut lines, false, &what);
+        assert_eq!(
+            language, "text",
+            "{what}: the block after the commands must be its output"
+        );
+        examples.push(Example {
+            file: file.to_string(),
+            source,
+            commands,
+            output,
+        });
+    }
+    examples
 }
 
 /// A line without its indentation and without the comment leader of a doc comment (`///`, `//!`:
@@ -91,4 +158,64 @@ fn a_changed_line_is_caught() {
         first_missing_line(&block, "let a = 1;\nlet b = 3;\n"),
         Some("let b = 2;".to_string())
     );
+}
+
+/// Runs each README example's commands as written, in a directory standing for the repository
+/// root (the example, `include` and `target` linked to the real ones), so that neither the source
+/// tree nor a `CARGO_TARGET_DIR` elsewhere changes what they see. The commands start with `cargo
+/// build --release`, which builds into the target dir of these tests.
+#[cfg(target_os = "linux")]
+#[test]
+fn readme_examples_build_and_run_from_the_build_tree() {
+    use std::os::unix::fs::symlink;
+    use std::process::Command;
+
+    let readme = std::fs::read_to_string(Path::new(CRATE_DIR).join("README.md")).expect("README.md");
+    let examples = examples(&readme);
+    assert!(examples.iter().any(|e| e.file == "quad.c"), "no README example quad.c");
+    for example in &examples {
+        let what = format!("the README example {}", example.file);
+        let (build, commands) = example.commands.split_first().expect("commands");
+        assert_eq!(
+            build, "cargo build --release",
+            "{what} must start by building the library"
+        );
+        let profile_dir = artifacts::build_library(true);
+
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("readme")
+            .join(&example.file);
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create the example directory");
+        std::fs::write(dir.join(&example.file), example.source.join("\n") + "\n").expect("write the example");
+        symlink(Path::new(CRATE_DIR).join("include"), dir.join("include")).expect("link include/");
+        symlink(profile_dir.parent().expect("the target dir"), dir.join("target")).expect("link target/");
+
+        // cargo sets LD_LIBRARY_PATH for tests; the program must find the library as written.
+        let mut shell = Command::new("sh");
+        shell.arg("-ec").arg(commands.join("\n"));
+        shell.current_dir(&dir).env_remove("LD_LIBRARY_PATH");
+        let output = tools::run_ok(shell, &what);
+        assert_eq!(
+            String::from_utf8_lossy(&output.stdout).lines().collect::<Vec<_>>(),
+            example.output,
+            "output of {what}"
+        );
+
+        // What the README shows compiles as strict C99.
+        if example.file.ends_with(".c") {
+            let mut strict = Command::new("cc");
+            strict.args([
+                "-std=c99",
+                "-Wall",
+                "-Wextra",
+                "-Werror",
+                "-pedantic",
+                "-fsyntax-only",
+                "-Iinclude",
+            ]);
+            strict.arg(&example.file).current_dir(&dir);
+            tools::run_ok(strict, &format!("{what} as strict C99"));
+        }
+    }
 }

@@ -24,7 +24,7 @@ const TOLERANCE: f32 = 1e-5;
 /// the test every other method's REJECT applies (UV or position quality below the threshold, or
 /// non-finite input).
 pub(crate) fn reject_degenerate(mesh: &Mesh, options: &Options, report: &mut Report) -> Result<(), Error> {
-    let mut owned = OwnedScratch::allocate(mesh.vertex_count())?;
+    let mut owned = OwnedScratch::allocate(mesh.vertex_count(), 0)?;
     let robust = Options {
         method: Method::Angle,
         ..*options

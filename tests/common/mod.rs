@@ -7,6 +7,7 @@ pub mod invariants;
 pub mod load;
 pub mod mikktspace_reference;
 pub mod mikktspace_scenes;
+pub mod needs;
 pub mod run;
 pub mod scenes;
 pub mod shapes;

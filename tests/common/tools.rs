@@ -1,15 +1,6 @@
-//! Running the tools tests need, and what a test does when one is not installed.
+//! Running the tools tests need (`needs.rs` says what a test does when one is not installed).
 
 use std::process::{Command, Output};
-
-/// A missing tool: under CI (`CI` set), which installs every tool, the test fails; elsewhere it
-/// says what is skipped and why.
-pub fn missing(what: &str, skipped: &str) {
-    if std::env::var_os("CI").is_some() {
-        panic!("{what} is missing; CI must install it");
-    }
-    eprintln!("skipping {skipped}: {what} is missing (this fails instead when CI is set)");
-}
 
 /// Runs `command` and prints what it printed (the test harness shows it when the test fails);
 /// panics with `what` when it cannot start.

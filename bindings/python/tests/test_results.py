@@ -1,18 +1,25 @@
-"""What the tangents are: policies, methods, flip_v, bitangents, and the listing's exact bits."""
+"""What the tangents are: methods, policies, threshold, flip_v, bitangents, reports, and the
+listing's exact bits."""
+
+from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 import pytest
+from numpy.typing import NDArray
 
 import tbasis
-from meshes import assert_frames, collapse_uvs_around, same_bits, torus, zero_uv_area_triangles
+from meshes import Mesh, assert_frames, collapse_uvs_around, torus, zero_uv_area_triangles
+from support import same_bits
 
 Method, Policy = tbasis.Method, tbasis.Policy
-# The methods that sum tangents per vertex (MIKKTSPACE works per corner; its own tests are elsewhere).
+# The methods that sum tangents per vertex (MIKKTSPACE works per corner: test_corners.py).
 PER_VERTEX_METHODS = [m for m in Method if m != Method.MIKKTSPACE]
 
 
 @pytest.fixture
-def collapsed():
+def collapsed() -> tuple[Mesh, int]:
     """A torus where every triangle at one vertex has collapsed UVs, and that vertex's index."""
     mesh = torus(jitter=0.005, random_diagonals=True, seed=7)
     vertex = 12 * 13 + 6  # grid vertex (12, 6), away from the seams
@@ -20,29 +27,39 @@ def collapsed():
     return mesh, vertex
 
 
-def angle_degrees(tangents, truth):
+def angle_degrees(tangents: NDArray[Any], truth: NDArray[np.float64]) -> NDArray[np.float64]:
     cosine = np.einsum("ij,ij->i", tangents[:, :3].astype(np.float64), truth)
-    return np.degrees(np.arccos(np.clip(cosine / np.linalg.norm(truth, axis=1), -1, 1)))
+    degrees: NDArray[np.float64] = np.degrees(np.arccos(np.clip(cosine / np.linalg.norm(truth, axis=1), -1, 1)))
+    return degrees
 
 
 @pytest.mark.parametrize("method", PER_VERTEX_METHODS)
-def test_every_method_gives_unit_frames_close_to_the_true_tangent(method):
+def test_every_method_gives_unit_frames_close_to_the_true_tangent(method: tbasis.Method) -> None:
     mesh = torus(nu=48, nv=24, jitter=0.002, random_diagonals=True, seed=3)
-    tangents, report = tbasis.generate_with_report(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=method)
+    tangents, report = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=method, report=True)
+    assert tangents.shape == (mesh.count, 4) and tangents.dtype == np.float32
     assert_frames(tangents, mesh.normals)
     assert np.all(tangents[:, 3] == 1.0)
     assert np.mean(angle_degrees(tangents, mesh.true_tangents)) < 1.0
-    assert report.degenerate_triangles == 0 and report.first_degenerate_triangle is None
-    assert report.mirrored_vertices == report.fallback_vertices == report.unreferenced_vertices == 0
-    assert report.repaired_corners == report.split_vertices == 0
+    assert report == tbasis.Report(0, None, 0, 0, 0, 0, 0, 0, 0)
 
 
-def test_methods_differ_and_default_is_angle():
+def test_names_and_enum_members_are_the_same_choice() -> None:
     mesh = torus(jitter=0.01, random_diagonals=True, seed=5)
-    results = {
+    args = (mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
+    for method in Method:
+        assert same_bits(tbasis.generate(*args, method=method), tbasis.generate(*args, method=method.value))
+    assert Method("mikktspace") is Method.MIKKTSPACE and Method.MIKKTSPACE.value == "mikktspace"
+    assert Policy("reject") is Policy.REJECT and isinstance(Policy.SKIP, str) and Policy.SKIP.value == "skip"
+
+
+def test_methods_differ_and_default_is_angle() -> None:
+    mesh = torus(jitter=0.01, random_diagonals=True, seed=5)
+    results: dict[tbasis.Method, NDArray[np.float32]] = {
         m: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=m) for m in PER_VERTEX_METHODS
     }
     assert same_bits(results[Method.DEFAULT], results[Method.ANGLE])
+    assert same_bits(results[Method.DEFAULT], tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices))
     named = [results[m] for m in (Method.LENGYEL, Method.ANGLE, Method.AREA, Method.UNIFORM)]
     for i in range(len(named)):
         for j in range(i + 1, len(named)):
@@ -50,11 +67,13 @@ def test_methods_differ_and_default_is_angle():
 
 
 @pytest.mark.parametrize("policy", [Policy.SKIP, Policy.INHERIT, Policy.DEFAULT])
-def test_skip_and_inherit_keep_frames_valid_on_collapsed_uvs(collapsed, policy):
+def test_skip_and_inherit_keep_frames_valid_on_collapsed_uvs(
+    collapsed: tuple[Mesh, int], policy: tbasis.Policy
+) -> None:
     mesh, vertex = collapsed
     degenerate = zero_uv_area_triangles(mesh)
     assert len(degenerate) >= 6
-    tangents, report = tbasis.generate_with_report(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, policy=policy)
+    tangents, report = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, policy=policy, report=True)
     assert_frames(tangents, mesh.normals)
     assert report.degenerate_triangles == len(degenerate)
     assert report.first_degenerate_triangle == degenerate[0]
@@ -68,56 +87,56 @@ def test_skip_and_inherit_keep_frames_valid_on_collapsed_uvs(collapsed, policy):
         assert tangents[vertex, 3] == 1.0
 
 
-def test_default_policy_is_inherit(collapsed):
+def test_default_policy_is_inherit_and_legacy_for_mikktspace(collapsed: tuple[Mesh, int]) -> None:
     mesh, _ = collapsed
-    default = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
-    inherit = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, policy=Policy.INHERIT)
-    assert same_bits(default, inherit)
+    args = (mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
+    assert same_bits(tbasis.generate(*args), tbasis.generate(*args, policy="inherit"))
+    # MIKKTSPACE's default is LEGACY: exactly mikktspace.c, which repairs nothing.
+    mikk = tbasis.generate_corners(*args, method="mikktspace")
+    assert same_bits(mikk, tbasis.generate_corners(*args, method="mikktspace", policy="legacy"))
+    assert not same_bits(mikk, tbasis.generate_corners(*args, method="mikktspace", policy="inherit"))
 
 
-def test_reject_raises_and_leaves_out_untouched(collapsed):
+def test_reject_reports_the_first_degenerate_triangle(collapsed: tuple[Mesh, int]) -> None:
     mesh, _ = collapsed
-    vertices = mesh.interleaved()
-    vertices["tangent"] = 7.5
-    before = vertices.copy()
-    with pytest.raises(tbasis.TbasisError) as caught:
-        tbasis.generate(
-            vertices["position"], vertices["normal"], vertices["uv"], mesh.indices,
-            policy=Policy.REJECT, out=vertices["tangent"],
-        )
-    error = caught.value
-    assert error.status == tbasis.Status.DEGENERATE_UV == 11
-    assert error.message == tbasis.status_string(11) and error.message in str(error)
-    assert error.report.first_degenerate_triangle == zero_uv_area_triangles(mesh)[0]
-    assert vertices.tobytes() == before.tobytes()
+    with pytest.raises(tbasis.DegenerateUvError) as caught:
+        tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, policy="reject")
+    first = int(zero_uv_area_triangles(mesh)[0])
+    assert caught.value.triangle == caught.value.report.first_degenerate_triangle == first
+    assert caught.value.report.degenerate_triangles == len(zero_uv_area_triangles(mesh))
+    assert f"triangle {first}" in str(caught.value)
 
 
-def test_reject_accepts_a_clean_mesh():
+def test_reject_accepts_a_clean_mesh() -> None:
     mesh = torus(jitter=0.005)
     rejected = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, policy=Policy.REJECT)
     assert same_bits(rejected, tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices))
 
 
-def test_legacy_keeps_the_listings_inf_and_nan(collapsed):
+def test_legacy_keeps_the_listings_inf_and_nan(collapsed: tuple[Mesh, int]) -> None:
     mesh, vertex = collapsed
-    tangents, report = tbasis.generate_with_report(
-        mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=Method.LENGYEL, policy=Policy.LEGACY
+    tangents, report = tbasis.generate(
+        mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method="lengyel", policy="legacy", report=True
     )
     assert report.degenerate_triangles == len(zero_uv_area_triangles(mesh))
     assert not np.all(np.isfinite(tangents[vertex, :3]))
     assert np.isfinite(tangents[0]).all()
 
 
-def test_threshold_changes_what_counts_as_degenerate():
+def test_threshold_changes_what_counts_as_degenerate() -> None:
     mesh = torus(nu=8, nv=4)
     mesh.uvs[:, 1] *= 1e-3  # UV triangles with aspect ratio ~1000: quality ~1e-3
-    loose = tbasis.generate_with_report(mesh.positions, mesh.normals, mesh.uvs, mesh.indices)[1]
-    strict = tbasis.generate_with_report(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, threshold=0.5)[1]
-    assert loose.degenerate_triangles == 0
-    assert strict.degenerate_triangles == len(mesh.indices) // 3
+    args = (mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
+    assert tbasis.generate(*args, report=True)[1].degenerate_triangles == 0
+    assert tbasis.generate(*args, threshold=0.5, report=True)[1].degenerate_triangles == len(mesh.indices) // 3
+    # None is the library's default, 1e-5; 0.0 is a threshold, not "the default" as in C.
+    assert same_bits(tbasis.generate(*args, threshold=1e-5), tbasis.generate(*args))
+    mesh.uvs[:, 1] *= 1e-3
+    assert tbasis.generate(*args, threshold=0.0, report=True)[1].degenerate_triangles == 0
+    assert tbasis.generate(*args, report=True)[1].degenerate_triangles == len(mesh.indices) // 3
 
 
-def test_flip_v_negates_w():
+def test_flip_v_negates_w() -> None:
     mesh = torus(jitter=0.01, random_diagonals=True, seed=11)
     for method in (Method.LENGYEL, Method.ANGLE):
         plain = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=method)
@@ -127,21 +146,35 @@ def test_flip_v_negates_w():
         np.testing.assert_allclose(flipped[:, :3], plain[:, :3], atol=1e-4)
 
 
-def test_bitangents_are_w_cross_n_t():
+def test_bitangents_are_w_cross_n_t_in_every_return_shape() -> None:
     mesh = torus(jitter=0.01, seed=2)
-    bitangents = np.full((mesh.count, 3), np.nan, dtype=np.float32)
-    tangents = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, flip_v=True, bitangents=bitangents)
+    args = (mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
+    tangents, bitangents = tbasis.generate(*args, flip_v=True, bitangents=True)
+    assert bitangents.shape == (mesh.count, 3) and bitangents.dtype == np.float32
     expected = tangents[:, 3:] * np.cross(mesh.normals, tangents[:, :3])
     np.testing.assert_allclose(bitangents, expected, atol=1e-5)
 
+    given = np.full((mesh.count, 3), np.nan, dtype=np.float32)
+    again, written, report = tbasis.generate(*args, flip_v=True, bitangents=given, report=True)
+    assert written is given and same_bits(given, bitangents) and same_bits(again, tangents)
+    assert isinstance(report, tbasis.Report)
+    only = tbasis.generate(*args, flip_v=True, bitangents=False)
+    assert isinstance(only, np.ndarray) and same_bits(only, tangents)
 
-def test_threads_give_the_same_bits():
-    mesh = torus(nu=255, nv=160, jitter=0.002, random_diagonals=True)  # 41k vertices: two workers
-    one = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
-    assert same_bits(tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, threads=4), one)
+
+def test_no_texcoords_gives_every_vertex_the_fallback_frame() -> None:
+    mesh = torus(nu=4, nv=3)
+    tangents, report = tbasis.generate(mesh.positions, mesh.normals, None, mesh.indices, report=True)
+    assert_frames(tangents, mesh.normals)
+    assert report.fallback_vertices == mesh.count
 
 
-def lengyel_listing(positions, normals, texcoords, triangles):
+def lengyel_listing(
+    positions: NDArray[np.float32],
+    normals: NDArray[np.float32],
+    texcoords: NDArray[np.float32],
+    triangles: NDArray[Any],
+) -> NDArray[np.float32]:
     """Lengyel's 2001 listing in float32, in its own operation order (no fused multiply-adds)."""
     f = np.float32
     p, w = positions, texcoords
@@ -160,12 +193,9 @@ def lengyel_listing(positions, normals, texcoords, triangles):
     tan1 = np.zeros_like(positions)
     tan2 = np.zeros_like(positions)
     for a, (i1, i2, i3) in enumerate(triangles):  # per vertex, in triangle order
-        tan1[i1] += sdir[a]
-        tan1[i2] += sdir[a]
-        tan1[i3] += sdir[a]
-        tan2[i1] += tdir[a]
-        tan2[i2] += tdir[a]
-        tan2[i3] += tdir[a]
+        for i in (i1, i2, i3):
+            tan1[i] += sdir[a]
+            tan2[i] += tdir[a]
 
     n, t = normals, tan1
     d = n[:, 0] * t[:, 0] + n[:, 1] * t[:, 1] + n[:, 2] * t[:, 2]
@@ -187,15 +217,11 @@ def lengyel_listing(positions, normals, texcoords, triangles):
 
 
 @pytest.mark.parametrize("seed", [1, 2])
-def test_lengyel_legacy_matches_the_listing_bit_for_bit(seed):
+def test_lengyel_legacy_matches_the_listing_bit_for_bit(seed: int) -> None:
     # Jitter, random diagonals and a mirrored half (w = -1 there) exercise every branch but 1/0.
     mesh = torus(nu=20, nv=10, jitter=0.01, random_diagonals=True, seed=seed)
     mesh.uvs[: mesh.count // 2, 0] *= -1
-    for array in (mesh.positions, mesh.normals, mesh.uvs):
-        assert array.dtype == np.float32
     expected = lengyel_listing(mesh.positions, mesh.normals, mesh.uvs, mesh.indices.reshape(-1, 3))
     assert np.isfinite(expected).all() and (expected[:, 3] == -1).any() and (expected[:, 3] == 1).any()
-    got = tbasis.generate(
-        mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method=Method.LENGYEL, policy=Policy.LEGACY
-    )
+    got = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method="lengyel", policy="legacy")
     assert same_bits(got, expected), np.max(np.abs(got - expected))

@@ -372,10 +372,21 @@ fn scratch_needed(vertex_count: usize, indices: &Buf, options_null: bool, codes:
     // SAFETY: `probe` and `options` are readable descriptions; options may be NULL.
     let needed = unsafe { tbasis_scratch_size(&probe, if options_null { ptr::null() } else { &options }) };
     let for_null_options = unsafe { tbasis_scratch_size(&probe, ptr::null()) };
+    // The defaults are policy INHERIT: `37 V + 4 C + 3`, or `45 V + 8 C + 3` once V or C passes
+    // 32 bits (the header's formula).
+    let corners = if indices.null { vertex_count } else { indices.count };
+    let (per_vertex_bytes, per_corner_bytes) = if vertex_count.max(corners) > u32::MAX as usize {
+        (45, 8)
+    } else {
+        (37, 4)
+    };
     let per_vertex = if vertex_count == 0 {
         Some(0)
     } else {
-        vertex_count.checked_mul(29).and_then(|n| n.checked_add(3))
+        vertex_count
+            .checked_mul(per_vertex_bytes)
+            .and_then(|n| n.checked_add(corners.checked_mul(per_corner_bytes)?))
+            .and_then(|n| n.checked_add(3))
     };
     assert_eq!(
         for_null_options,

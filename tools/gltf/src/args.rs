@@ -1,0 +1,172 @@
+//! The command line, and the list of (input, output) pairs it asks for.
+
+use std::collections::HashSet;
+use std::num::NonZeroUsize;
+use std::path::{Path, PathBuf};
+
+use clap::{Parser, ValueEnum};
+use tbasis::{DegeneratePolicy, Method, Options};
+
+/// Writes a TANGENT attribute into every triangle primitive of glTF files (.gltf, .glb) that has
+/// NORMAL and the texture coordinates of its normal texture, computed per corner and split at
+/// seams so that each corner gets exactly its own tangent.
+#[derive(Parser, Debug)]
+#[command(name = "tbasis-gltf", version)]
+pub struct Args {
+    /// Input files, .gltf or .glb; each output is of the same kind.
+    #[arg(required = true, value_name = "INPUT")]
+    pub inputs: Vec<PathBuf>,
+
+    /// The output file, for a single input.
+    #[arg(
+        short,
+        long,
+        value_name = "FILE",
+        conflicts_with = "out_dir",
+        required_unless_present = "out_dir"
+    )]
+    pub output: Option<PathBuf>,
+
+    /// The output folder: each input is written there under its own file name.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+
+    /// Replace the TANGENT attributes primitives already have (kept otherwise).
+    #[arg(long)]
+    pub overwrite: bool,
+
+    /// How tangents are computed.
+    #[arg(long, value_enum, default_value_t = MethodArg::Mikktspace)]
+    pub method: MethodArg,
+
+    /// What happens where the texture coordinates are degenerate. `skip` keeps mikktspace.c's
+    /// tangents except where it writes no usable one.
+    #[arg(long, value_enum, default_value_t = PolicyArg::Skip)]
+    pub policy: PolicyArg,
+
+    /// Files processed at once (default: one per core).
+    #[arg(short, long, value_name = "N")]
+    pub jobs: Option<NonZeroUsize>,
+
+    /// Print errors only.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Exactly mikktspace.c per corner (what normal maps are baked against).
+    Mikktspace,
+    /// Corner-angle weighted face tangents.
+    Angle,
+    /// The original listing (Lengyel 2001).
+    Lengyel,
+    /// Area-weighted unit face tangents.
+    Area,
+    /// Unit face tangents with equal weights.
+    Uniform,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PolicyArg {
+    /// Exactly what the method gives, invalid tangents included.
+    Legacy,
+    /// Degenerate triangles contribute nothing; a corner left without a tangent gets one built
+    /// from its normal.
+    Skip,
+    /// Like skip, but such a corner first takes a tangent from its neighbours.
+    Inherit,
+    /// Fail the file at the first degenerate triangle.
+    Reject,
+}
+
+/// One file to convert.
+#[derive(Clone, Debug)]
+pub struct Job {
+    pub input: PathBuf,
+    pub output: PathBuf,
+}
+
+impl Args {
+    /// The library's options: glTF's texture coordinates have V pointing down.
+    pub fn options(&self) -> Options {
+        let method = match self.method {
+            MethodArg::Mikktspace => Method::Mikktspace,
+            MethodArg::Angle => Method::Angle,
+            MethodArg::Lengyel => Method::Lengyel,
+            MethodArg::Area => Method::Area,
+            MethodArg::Uniform => Method::Uniform,
+        };
+        let degenerate_policy = match self.policy {
+            PolicyArg::Legacy => DegeneratePolicy::Legacy,
+            PolicyArg::Skip => DegeneratePolicy::Skip,
+            PolicyArg::Inherit => DegeneratePolicy::Inherit,
+            PolicyArg::Reject => DegeneratePolicy::Reject,
+        };
+        Options {
+            method,
+            degenerate_policy,
+            flip_v: true,
+            // Files run in parallel instead (`--jobs`), and primitives within a file.
+            threads: 1,
+            ..Options::default()
+        }
+    }
+
+    /// Every (input, output) pair, or what is wrong with the command line.
+    pub fn jobs(&self) -> Result<Vec<Job>, String> {
+        for input in &self.inputs {
+            kind_of(input)?;
+        }
+        if let Some(output) = &self.output {
+            let [input] = self.inputs.as_slice() else {
+                return Err(format!(
+                    "-o names one output but {} inputs are given; use --out-dir",
+                    self.inputs.len()
+                ));
+            };
+            if kind_of(output)? != kind_of(input)? {
+                return Err(format!(
+                    "{}: the output must be of the input's kind ({})",
+                    output.display(),
+                    kind_of(input)?
+                ));
+            }
+            return Ok(vec![Job {
+                input: input.clone(),
+                output: output.clone(),
+            }]);
+        }
+        let dir = self.out_dir.as_ref().ok_or("give -o FILE or --out-dir DIR")?;
+        let mut names = HashSet::new();
+        self.inputs
+            .iter()
+            .map(|input| {
+                let name = input
+                    .file_name()
+                    .ok_or_else(|| format!("{}: not a file name", input.display()))?;
+                if !names.insert(name.to_owned()) {
+                    return Err(format!(
+                        "two inputs are named {}; their outputs in {} would collide",
+                        name.to_string_lossy(),
+                        dir.display()
+                    ));
+                }
+                Ok(Job {
+                    input: input.clone(),
+                    output: dir.join(name),
+                })
+            })
+            .collect()
+    }
+}
+
+/// `gltf` or `glb`, from the file name.
+pub fn kind_of(path: &Path) -> Result<&'static str, String> {
+    let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("gltf") => Ok("gltf"),
+        Some("glb") => Ok("glb"),
+        _ => Err(format!("{}: not a .gltf or .glb file name", path.display())),
+    }
+}

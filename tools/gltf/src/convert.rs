@@ -1,0 +1,305 @@
+//! One file, start to end: read, plan, compute the primitives (in parallel), append the new data,
+//! point URIs at the right files, write.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use serde_json::{json, Value};
+use tbasis::Options;
+
+use crate::args::Job;
+use crate::buffers::Appender;
+use crate::io::{self, Asset, Kind};
+use crate::primitive::{self, Computed, Edit};
+use crate::select::{self, Plan, Source};
+use crate::uri;
+
+/// How every file is processed.
+pub struct Settings {
+    pub options: Options,
+    pub overwrite: bool,
+    /// Threads for the primitives of one file.
+    pub threads: usize,
+}
+
+/// What was done to one file.
+#[derive(Debug, Default)]
+pub struct Outcome {
+    /// Primitives that got tangents.
+    pub done: usize,
+    pub vertices_added: usize,
+    /// Corners whose tangent was repaired (policies SKIP and INHERIT with MIKKTSPACE).
+    pub repaired_corners: usize,
+    /// Primitives left as they were: `mesh m primitive p: why`.
+    pub left: Vec<String>,
+    pub elapsed: Duration,
+}
+
+/// Converts `job.input` into `job.output`; on error nothing has been written.
+pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
+    let start = Instant::now();
+    let mut asset = io::read(&job.input)?;
+    let mut outcome = Outcome::default();
+
+    // Plan every primitive; identical ones are computed once and share the result.
+    let mut sources: Vec<Source> = Vec::new();
+    let mut users: Vec<Vec<(usize, usize)>> = Vec::new();
+    let mut by_key: HashMap<String, usize> = HashMap::new();
+    for (m, mesh) in asset.root.meshes.iter().enumerate() {
+        for p in 0..mesh.primitives.len() {
+            match select::plan(&asset.json, m, p, settings.overwrite) {
+                Plan::Leave(why) => outcome
+                    .left
+                    .push(format!("{}: {why}", primitive_name(&asset.json, m, p))),
+                Plan::Process(source) => {
+                    let key = format!("{:?}", source.key());
+                    let slot = *by_key.entry(key).or_insert_with(|| {
+                        sources.push(source);
+                        users.push(Vec::new());
+                        sources.len() - 1
+                    });
+                    users[slot].push((m, p));
+                }
+            }
+        }
+    }
+
+    let computed = compute_all(&asset, &sources, settings)?;
+    if !computed.is_empty() {
+        append(&mut asset, &sources, &users, &computed, &mut outcome)?;
+    }
+    let side_file = finish_buffers(&mut asset, &job.output)?;
+    rebase_uris(&mut asset, &job.output)?;
+    let mut files = side_file.into_iter().collect::<Vec<_>>();
+    let main = match asset.kind {
+        Kind::Glb => {
+            let bin = glb_bin(&asset);
+            io::encode_glb(&asset.json, bin)?
+        }
+        Kind::Gltf => io::encode_gltf(&asset.json)?,
+    };
+    files.push((job.output.clone(), main));
+    io::write_files(&files, &job.input)?;
+    outcome.elapsed = start.elapsed();
+    Ok(outcome)
+}
+
+/// `mesh 2 primitive 0 ("Helmet")`: how messages name a primitive.
+fn primitive_name(json: &Value, m: usize, p: usize) -> String {
+    match json["meshes"][m]["name"].as_str() {
+        Some(name) => format!("mesh {m} ({name:?}) primitive {p}"),
+        None => format!("mesh {m} primitive {p}"),
+    }
+}
+
+/// Every source's tangents and split, on up to `settings.threads` threads; the first error wins.
+fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result<Vec<Computed>, String> {
+    let results: Vec<Mutex<Option<Result<Computed, String>>>> = sources.iter().map(|_| Mutex::new(None)).collect();
+    let next = AtomicUsize::new(0);
+    let work = || loop {
+        let k = next.fetch_add(1, Ordering::Relaxed);
+        let Some(source) = sources.get(k) else { break };
+        let result = primitive::compute(source, &asset.root, &asset.buffers, &settings.options)
+            .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)));
+        *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
+    };
+    let threads = settings.threads.clamp(1, sources.len().max(1));
+    std::thread::scope(|scope| {
+        for _ in 1..threads {
+            scope.spawn(work);
+        }
+        work();
+    });
+    results
+        .into_iter()
+        .map(|slot| {
+            slot.into_inner()
+                .unwrap_or_else(|e| e.into_inner())
+                .expect("every source was computed")
+        })
+        .collect()
+}
+
+/// Appends the new accessors and data and points the primitives at them.
+fn append(
+    asset: &mut Asset,
+    sources: &[Source],
+    users: &[Vec<(usize, usize)>],
+    computed: &[Computed],
+    outcome: &mut Outcome,
+) -> Result<(), String> {
+    let (buffer, base) = data_buffer(asset);
+    let mut appender = Appender::new(buffer, base, asset.root.buffer_views.len(), asset.root.accessors.len());
+    let mut edits: Vec<Edit> = Vec::with_capacity(sources.len());
+    for (source, computed) in sources.iter().zip(computed) {
+        let edit = primitive::edit(
+            source,
+            computed,
+            &asset.json,
+            &asset.root,
+            &asset.buffers,
+            &mut appender,
+        )
+        .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)))?;
+        outcome.repaired_corners += computed.report.repaired_corners;
+        outcome.vertices_added += edit.vertices_added;
+        edits.push(edit);
+    }
+    for (edit, users) in edits.iter().zip(users) {
+        for &(m, p) in users {
+            primitive::apply(&mut asset.json["meshes"][m]["primitives"][p], edit);
+            outcome.done += 1;
+        }
+    }
+    let length = appender.end();
+    let bytes = appender.append_json(&mut asset.json);
+    place(asset, buffer, base, length, bytes);
+    Ok(())
+}
+
+/// The buffer the new data goes into, and where in it: the end of the GLB's own buffer, or a new
+/// buffer (its URI is chosen when the file is written).
+fn data_buffer(asset: &Asset) -> (usize, usize) {
+    let glb_buffer = asset.kind == Kind::Glb && asset.root.buffers.first().is_some_and(|b| b.uri.is_none());
+    if glb_buffer {
+        let length = asset.root.buffers[0].byte_length.0 as usize;
+        (0, length.next_multiple_of(4))
+    } else {
+        (asset.root.buffers.len(), 0)
+    }
+}
+
+/// Stores the new data in the buffer `data_buffer` chose.
+fn place(asset: &mut Asset, buffer: usize, base: usize, length: usize, bytes: Vec<u8>) {
+    if buffer < asset.buffers.len() {
+        let data = asset.buffers[buffer].get_or_insert_with(Vec::new);
+        data.truncate(base);
+        data.resize(base, 0);
+        data.extend_from_slice(&bytes);
+        asset.json["buffers"][buffer]["byteLength"] = json!(length);
+    } else {
+        let list = asset
+            .json
+            .as_object_mut()
+            .expect("the document is an object")
+            .entry("buffers")
+            .or_insert_with(|| Value::Array(Vec::new()));
+        if let Value::Array(list) = list {
+            // Its URI (none for a GLB's own buffer) is set by `finish_buffers`.
+            list.push(json!({ "byteLength": length }));
+        }
+        asset.buffers.push(Some(bytes));
+    }
+}
+
+/// Gives a buffer the tool added a place: the GLB's binary chunk when it is the first buffer of a
+/// .glb, a data URI in a .gltf whose buffers are all embedded, else a file beside the output.
+/// Returns that file.
+fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<(PathBuf, Vec<u8>)>, String> {
+    let added = asset.root.buffers.len();
+    if asset.buffers.len() == added {
+        return Ok(None);
+    }
+    if asset.kind == Kind::Glb && added == 0 {
+        return Ok(None);
+    }
+    let bytes = asset.buffers[added].as_deref().unwrap_or_default();
+    let embedded = asset.kind == Kind::Gltf
+        && asset
+            .root
+            .buffers
+            .iter()
+            .all(|b| b.uri.as_deref().is_some_and(|u| u.starts_with("data:")));
+    if embedded {
+        asset.json["buffers"][added]["uri"] = json!(uri::encode_data(bytes));
+        return Ok(None);
+    }
+    let name = side_file_name(asset, output)?;
+    let path = output.with_file_name(&name);
+    asset.json["buffers"][added]["uri"] = json!(uri::encode_segment(&name));
+    Ok(Some((path, bytes.to_vec())))
+}
+
+/// `<output stem>.tangents.bin`, or with a number, so that it names no file the document
+/// already uses.
+fn side_file_name(asset: &Asset, output: &Path) -> Result<String, String> {
+    let stem = output
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .ok_or_else(|| format!("{}: the output name is not valid UTF-8", output.display()))?;
+    let out_dir = canonical_dir(output)?;
+    let in_dir = std::fs::canonicalize(&asset.dir).map_err(|e| format!("{}: {e}", asset.dir.display()))?;
+    let used: Vec<PathBuf> = uris(&asset.json)
+        .filter(|u| uri::is_relative_file(u))
+        .map(|u| uri::resolve(&in_dir, u))
+        .collect();
+    (0..)
+        .map(|k| match k {
+            0 => format!("{stem}.tangents.bin"),
+            k => format!("{stem}.tangents.{k}.bin"),
+        })
+        .find(|name| !used.contains(&out_dir.join(name)))
+        .ok_or_else(|| "no free name for the new buffer".to_string())
+}
+
+/// Every buffer and image URI of the document.
+fn uris(json: &Value) -> impl Iterator<Item = &str> {
+    ["buffers", "images"]
+        .into_iter()
+        .flat_map(move |key| json[key].as_array().into_iter().flatten())
+        .filter_map(|item| item["uri"].as_str())
+}
+
+/// A document written to another folder must still find its files: relative URIs are rewritten
+/// to lead from the output's folder to the same files.
+fn rebase_uris(asset: &mut Asset, output: &Path) -> Result<(), String> {
+    let in_dir = std::fs::canonicalize(&asset.dir).map_err(|e| format!("{}: {e}", asset.dir.display()))?;
+    let out_dir = canonical_dir(output)?;
+    if in_dir == out_dir {
+        return Ok(());
+    }
+    // Buffers the tool added already name files beside the output.
+    let original_buffers = asset.root.buffers.len();
+    for key in ["buffers", "images"] {
+        // `get_mut`: indexing would add the key with a null value.
+        let Some(items) = asset.json.get_mut(key).and_then(Value::as_array_mut) else {
+            continue;
+        };
+        let count = if key == "buffers" {
+            original_buffers
+        } else {
+            items.len()
+        };
+        for item in items.iter_mut().take(count) {
+            let Some(old) = item["uri"].as_str().filter(|u| uri::is_relative_file(u)) else {
+                continue;
+            };
+            let new = uri::rebase(old, &in_dir, &out_dir)
+                .ok_or_else(|| format!("cannot refer to {old} from {}", out_dir.display()))?;
+            item["uri"] = json!(new);
+        }
+    }
+    Ok(())
+}
+
+/// The output's folder, canonical (it must exist).
+fn canonical_dir(output: &Path) -> Result<PathBuf, String> {
+    let dir = match output.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    };
+    std::fs::canonicalize(dir).map_err(|e| format!("output folder {}: {e}", dir.display()))
+}
+
+/// The binary chunk of a .glb: its first buffer when that one has no URI.
+fn glb_bin(asset: &Asset) -> Option<&[u8]> {
+    let first = asset.json["buffers"].get(0)?;
+    if first.get("uri").is_some() {
+        return None;
+    }
+    let length = first["byteLength"].as_u64()? as usize;
+    asset.buffers.first()?.as_deref().map(|b| &b[..length.min(b.len())])
+}

@@ -1,0 +1,173 @@
+//! Reading a .gltf or .glb into its JSON, a validated typed view and its buffers; writing one
+//! through a temporary file in the destination folder, renamed into place.
+
+use std::borrow::Cow;
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use gltf::json::validation::Validate;
+use serde_json::Value;
+
+use crate::buffers;
+
+/// Required extensions whose data the tool cannot decode: compressed geometry.
+const UNDECODABLE: [(&str, &str); 3] = [
+    ("KHR_draco_mesh_compression", "Draco mesh compression"),
+    ("EXT_meshopt_compression", "meshopt compression"),
+    ("KHR_meshopt_compression", "meshopt compression"),
+];
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Gltf,
+    Glb,
+}
+
+/// A document as read.
+pub struct Asset {
+    pub kind: Kind,
+    /// The whole document: edited, then written back.
+    pub json: Value,
+    /// The same document, typed and validated: what the tool reads.
+    pub root: gltf::json::Root,
+    /// Each buffer's bytes; `None` for a fallback buffer that holds none (meshopt).
+    pub buffers: Vec<Option<Vec<u8>>>,
+    /// The folder relative URIs resolve against.
+    pub dir: PathBuf,
+}
+
+/// Reads and checks `path`; the error says what is wrong (the caller names the file).
+pub fn read(path: &Path) -> Result<Asset, String> {
+    let bytes = fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+    let (kind, json_bytes, bin) = if bytes.starts_with(b"glTF") {
+        let glb = gltf::Glb::from_slice(&bytes).map_err(|e| format!("not a valid GLB file: {e}"))?;
+        (Kind::Glb, glb.json.into_owned(), glb.bin.map(Cow::into_owned))
+    } else {
+        (Kind::Gltf, bytes, None)
+    };
+    let json: Value = serde_json::from_slice(&json_bytes).map_err(|e| format!("broken JSON: {e}"))?;
+    if !json.is_object() {
+        return Err("broken JSON: the document is not an object".into());
+    }
+    check_required_extensions(&json)?;
+    let mut root: gltf::json::Root =
+        serde_json::from_value(json.clone()).map_err(|e| format!("not a glTF 2.0 document: {e}"))?;
+    // The typed view knows few extensions; the ones that matter were checked above.
+    root.extensions_required.clear();
+    validate(&root)?;
+    let dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let buffers = buffers::load(&root, &json, bin, &dir)?;
+    Ok(Asset {
+        kind,
+        json,
+        root,
+        buffers,
+        dir,
+    })
+}
+
+fn check_required_extensions(json: &Value) -> Result<(), String> {
+    let required = json["extensionsRequired"]
+        .as_array()
+        .map(Vec::as_slice)
+        .unwrap_or_default();
+    for name in required.iter().filter_map(Value::as_str) {
+        if let Some((_, what)) = UNDECODABLE.iter().find(|(ext, _)| *ext == name) {
+            return Err(format!(
+                "unsupported: it requires {name} ({what}), which tbasis-gltf cannot decode; decompress it first"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The document's references and enumerations, as the `gltf` crate checks them.
+fn validate(root: &gltf::json::Root) -> Result<(), String> {
+    let mut errors = Vec::new();
+    root.validate(root, gltf::json::Path::new, &mut |path, error| {
+        errors.push(format!("{}: {error}", path()));
+    });
+    if errors.is_empty() {
+        return Ok(());
+    }
+    let more = errors.len().saturating_sub(3);
+    errors.truncate(3);
+    let tail = if more > 0 {
+        format!(" (and {more} more)")
+    } else {
+        String::new()
+    };
+    Err(format!("invalid glTF: {}{tail}", errors.join("; ")))
+}
+
+/// The bytes of a .glb holding `json` and the binary chunk `bin`.
+pub fn encode_glb(json: &Value, bin: Option<&[u8]>) -> Result<Vec<u8>, String> {
+    let json = serde_json::to_vec(json).map_err(|e| e.to_string())?;
+    let glb = gltf::Glb {
+        header: gltf::binary::Header {
+            magic: *b"glTF",
+            version: 2,
+            // Computed by the writer.
+            length: 0,
+        },
+        json: Cow::Owned(json),
+        bin: bin.map(Cow::Borrowed),
+    };
+    glb.to_vec().map_err(|e| e.to_string())
+}
+
+/// The bytes of a .gltf holding `json`.
+pub fn encode_gltf(json: &Value) -> Result<Vec<u8>, String> {
+    let mut bytes = serde_json::to_vec_pretty(json).map_err(|e| e.to_string())?;
+    bytes.push(b'\n');
+    Ok(bytes)
+}
+
+/// Writes every `(path, bytes)` through a temporary file beside it, renamed into place in order,
+/// so that an interrupted run leaves no half-written file. New files get `like`'s permissions, and
+/// are writable by their owner (inputs are often read-only).
+pub fn write_files(files: &[(PathBuf, Vec<u8>)], like: &Path) -> Result<(), String> {
+    let permissions = fs::metadata(like).map(|m| writable(m.permissions())).ok();
+    let mut staged = Vec::new();
+    for (path, bytes) in files {
+        let dir = match path.parent() {
+            Some(dir) if !dir.as_os_str().is_empty() => dir,
+            _ => Path::new("."),
+        };
+        let mut file = tempfile::Builder::new()
+            .prefix(".tbasis-gltf-")
+            .suffix(".tmp")
+            .tempfile_in(dir)
+            .map_err(|e| format!("cannot create a temporary file in {}: {e}", dir.display()))?;
+        // A rename after the write is what an interrupted run needs; no fsync (that is for power loss).
+        file.write_all(bytes)
+            .map_err(|e| format!("cannot write {}: {e}", file.path().display()))?;
+        if let Some(permissions) = &permissions {
+            // Not fatal: the temporary file's own mode is private but valid.
+            let _ = file.as_file().set_permissions(permissions.clone());
+        }
+        staged.push((file, path));
+    }
+    for (file, path) in staged {
+        file.persist(path)
+            .map_err(|e| format!("cannot rename into {}: {}", path.display(), e.error))?;
+    }
+    Ok(())
+}
+
+#[cfg(unix)]
+fn writable(permissions: fs::Permissions) -> fs::Permissions {
+    use std::os::unix::fs::PermissionsExt;
+    fs::Permissions::from_mode(permissions.mode() | 0o200)
+}
+
+#[cfg(not(unix))]
+fn writable(mut permissions: fs::Permissions) -> fs::Permissions {
+    #[allow(clippy::permissions_set_readonly_false)]
+    permissions.set_readonly(false);
+    permissions
+}

@@ -1,0 +1,56 @@
+//! `tbasis-gltf`: writes TANGENT attributes into glTF files (README: "tbasis-gltf").
+//!
+//! Exit status: 0 when every file was written, 1 when any file failed (each failure is reported
+//! on stderr and leaves no output), 2 for a bad command line.
+
+mod accessor;
+mod args;
+mod batch;
+mod buffers;
+mod convert;
+mod io;
+mod primitive;
+mod select;
+mod uri;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let args = args::Args::parse();
+    let jobs = match args.jobs() {
+        Ok(jobs) => jobs,
+        Err(message) => {
+            eprintln!("tbasis-gltf: {message}");
+            return ExitCode::from(2);
+        }
+    };
+    let out_dir = args
+        .out_dir
+        .as_deref()
+        .or_else(|| args.output.as_deref().and_then(std::path::Path::parent));
+    if let Some(dir) = out_dir.filter(|dir| !dir.as_os_str().is_empty()) {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("tbasis-gltf: cannot create {}: {e}", dir.display());
+            return ExitCode::FAILURE;
+        }
+    }
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let workers = args.jobs.map_or(cores, usize::from).min(jobs.len()).max(1);
+    let settings = convert::Settings {
+        options: args.options(),
+        overwrite: args.overwrite,
+        // Cores the file workers leave idle go to the primitives of each file.
+        threads: (cores / workers).max(1),
+    };
+    let failed = batch::run(&jobs, &settings, workers, args.quiet);
+    if failed == 0 {
+        ExitCode::SUCCESS
+    } else {
+        if jobs.len() > 1 {
+            eprintln!("tbasis-gltf: {failed} of {} files failed", jobs.len());
+        }
+        ExitCode::FAILURE
+    }
+}

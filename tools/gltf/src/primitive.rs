@@ -1,0 +1,311 @@
+//! One primitive: tangents per corner, the seam split that gives each corner its own tangent, and
+//! the new accessors that hold the result.
+
+use std::collections::HashMap;
+
+use serde_json::{json, Map, Value};
+use tbasis::{copy_split_vertices, generate_corners, split_corners, Indices, Mesh, Options, Report, SeamSplit};
+use tbasis::{Strided, StridedMut};
+
+use crate::accessor::{self, Buffers, Layout};
+use crate::buffers::{Appender, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
+use crate::select::Source;
+
+/// Tangents for a primitive's vertices after the split.
+pub struct Computed {
+    /// Vertices before the split.
+    pub vertex_count: usize,
+    /// One per vertex after the split: the original ones, then the appended copies.
+    pub tangents: Vec<[f32; 4]>,
+    /// The new index of every corner, and the vertex each appended one copies.
+    pub split: SeamSplit,
+    /// The index accessor's component type (5121, 5123 or 5125), `None` unindexed.
+    pub index_type: Option<u32>,
+    pub report: Report,
+}
+
+/// What replaces the primitive's accessors.
+pub struct Edit {
+    /// New accessors for attributes (empty when no vertex was split: the old ones still fit).
+    pub attributes: Vec<(String, usize)>,
+    pub tangent: usize,
+    pub indices: Option<usize>,
+    pub targets: Vec<Vec<(String, usize)>>,
+    pub vertices_added: usize,
+}
+
+/// Computes the primitive's tangents per corner and splits its seams.
+pub fn compute(
+    source: &Source,
+    root: &gltf::json::Root,
+    buffers: &Buffers,
+    options: &Options,
+) -> Result<Computed, String> {
+    let read = |name: &str, index: usize| -> Result<Layout, String> {
+        accessor::layout(root, index).map_err(|e| format!("{name}: {e}"))
+    };
+    let vertex_count = read("POSITION", source.position)?.count;
+    if vertex_count == 0 {
+        return Err("POSITION has no elements".into());
+    }
+    let all = source.attributes.iter().chain(source.targets.iter().flatten());
+    for (name, index) in all {
+        let count = read(name, *index)?.count;
+        if count != vertex_count {
+            return Err(format!("{name} has {count} elements, POSITION {vertex_count}"));
+        }
+    }
+    let positions = accessor::floats::<3>(root, buffers, source.position).map_err(|e| format!("POSITION: {e}"))?;
+    let normals = accessor::floats::<3>(root, buffers, source.normal).map_err(|e| format!("NORMAL: {e}"))?;
+    let texcoords =
+        accessor::floats::<2>(root, buffers, source.texcoord).map_err(|e| format!("texture coordinates: {e}"))?;
+    let (indices, index_type) = match source.indices {
+        Some(index) => {
+            let layout = read("indices", index)?;
+            let indices = accessor::indices(root, buffers, index).map_err(|e| format!("indices: {e}"))?;
+            (Some(indices), Some(layout.component.as_gl_enum()))
+        }
+        None => (None, None),
+    };
+    let mesh = Mesh {
+        positions: Strided::from_slice(&positions),
+        normals: Strided::from_slice(&normals),
+        texcoords: Some(Strided::from_slice(&texcoords)),
+        indices: indices
+            .as_deref()
+            .map_or(Indices::None, |indices| Indices::U32(Strided::from_slice(indices))),
+    };
+    let mut corners = vec![[0.0f32; 4]; mesh.corner_count()];
+    let report = generate_corners(&mesh, options, &mut StridedMut::from_slice(&mut corners))
+        .map_err(|e| format!("tangents: {e}"))?;
+    let split = split_corners(&mesh, &Strided::from_slice(&corners)).map_err(|e| format!("seam split: {e}"))?;
+
+    // A vertex no triangle uses still needs a valid TANGENT: a frame built from its normal.
+    let total = vertex_count + split.sources.len();
+    let mut tangents = vec![None; total];
+    for (&vertex, corner) in split.indices.iter().zip(&corners) {
+        tangents[vertex as usize] = Some(*corner);
+    }
+    let tangents = tangents
+        .into_iter()
+        .enumerate()
+        .map(|(v, t)| {
+            t.unwrap_or_else(|| {
+                let source = split
+                    .sources
+                    .get(v.wrapping_sub(vertex_count))
+                    .map_or(v, |&s| s as usize);
+                frame_from_normal(normals[source])
+            })
+        })
+        .collect();
+    Ok(Computed {
+        vertex_count,
+        tangents,
+        split,
+        index_type,
+        report,
+    })
+}
+
+/// The new accessors for `computed`: TANGENT always; when vertices were appended, every vertex
+/// attribute, morph target attribute and the indices too, as copies with the new vertices added.
+pub fn edit(
+    source: &Source,
+    computed: &Computed,
+    json: &Value,
+    root: &gltf::json::Root,
+    buffers: &Buffers,
+    appender: &mut Appender,
+) -> Result<Edit, String> {
+    let total = computed.tangents.len();
+    let tangent_bytes: Vec<u8> = computed
+        .tangents
+        .iter()
+        .flatten()
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    let view = appender.view(&tangent_bytes, None, ARRAY_BUFFER);
+    let tangent = appender.accessor(json!({
+        "bufferView": view,
+        "componentType": 5126,
+        "count": total,
+        "type": "VEC4",
+    }));
+    let sources = &computed.split.sources;
+    if sources.is_empty() {
+        // Every corner kept its vertex: the indices and attributes stay as they are.
+        return Ok(Edit {
+            attributes: Vec::new(),
+            tangent,
+            indices: None,
+            targets: Vec::new(),
+            vertices_added: 0,
+        });
+    }
+    // One copy per source accessor, even when several attributes read it.
+    let mut copies = HashMap::new();
+    let mut copy = |name: &str, index: usize| -> Result<usize, String> {
+        if let Some(&done) = copies.get(&index) {
+            return Ok(done);
+        }
+        let done = copy_attribute(json, root, buffers, index, computed.vertex_count, sources, appender)
+            .map_err(|e| format!("{name}: {e}"))?;
+        copies.insert(index, done);
+        Ok(done)
+    };
+    let attributes = source
+        .attributes
+        .iter()
+        .map(|(name, index)| Ok((name.clone(), copy(name, *index)?)))
+        .collect::<Result<Vec<_>, String>>()?;
+    let targets = source
+        .targets
+        .iter()
+        .map(|target| {
+            target
+                .iter()
+                .map(|(name, index)| Ok((name.clone(), copy(name, *index)?)))
+                .collect::<Result<Vec<_>, String>>()
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let indices = Some(write_indices(computed, appender));
+    Ok(Edit {
+        attributes,
+        tangent,
+        indices,
+        targets,
+        vertices_added: sources.len(),
+    })
+}
+
+/// Writes `edit` into the primitive's JSON.
+pub fn apply(primitive: &mut Value, edit: &Edit) {
+    let attributes = object(&mut primitive["attributes"]);
+    for (name, index) in &edit.attributes {
+        attributes.insert(name.clone(), json!(index));
+    }
+    attributes.insert("TANGENT".into(), json!(edit.tangent));
+    if let Some(indices) = edit.indices {
+        primitive["indices"] = json!(indices);
+    }
+    for (k, target) in edit.targets.iter().enumerate() {
+        let map = object(&mut primitive["targets"][k]);
+        for (name, index) in target {
+            map.insert(name.clone(), json!(index));
+        }
+    }
+}
+
+fn object(value: &mut Value) -> &mut Map<String, Value> {
+    if !value.is_object() {
+        *value = Value::Object(Map::new());
+    }
+    value.as_object_mut().expect("made an object above")
+}
+
+/// A copy of vertex accessor `index` with the appended vertices, as a new accessor.
+fn copy_attribute(
+    json: &Value,
+    root: &gltf::json::Root,
+    buffers: &Buffers,
+    index: usize,
+    vertex_count: usize,
+    sources: &[u32],
+    appender: &mut Appender,
+) -> Result<usize, String> {
+    let (layout, packed) = accessor::packed(root, buffers, index)?;
+    let size = layout.element_size();
+    // Vertex attribute elements must start on 4-byte boundaries.
+    let stride = size.next_multiple_of(4);
+    let total = vertex_count + sources.len();
+    let mut data = vec![0u8; total * stride];
+    if stride == size {
+        data[..packed.len()].copy_from_slice(&packed);
+    } else {
+        for (element, slot) in packed.chunks_exact(size).zip(data.chunks_exact_mut(stride)) {
+            slot[..size].copy_from_slice(element);
+        }
+    }
+    copy_split_vertices(&mut data, stride, size, vertex_count, sources)
+        .map_err(|e| format!("copying vertices: {e}"))?;
+    let view = appender.view(&data, (stride != size).then_some(stride), ARRAY_BUFFER);
+    let old = &json["accessors"][index];
+    let mut accessor = json!({
+        "bufferView": view,
+        "componentType": layout.component.as_gl_enum(),
+        "count": total,
+        "type": old["type"],
+    });
+    if layout.normalized {
+        accessor["normalized"] = json!(true);
+    }
+    // The same values, some repeated: the bounds still hold.
+    for key in ["min", "max", "name"] {
+        if let Some(value) = old.get(key) {
+            accessor[key] = value.clone();
+        }
+    }
+    Ok(appender.accessor(accessor))
+}
+
+/// The split indices as a new accessor, of the original type where every index fits it (the
+/// largest value of each type is primitive restart, never an index).
+fn write_indices(computed: &Computed, appender: &mut Appender) -> usize {
+    let total = computed.tangents.len();
+    let original = computed.index_type.unwrap_or(5125);
+    let component = [(5121, 255), (5123, 65535)]
+        .into_iter()
+        .find(|&(kind, limit)| kind >= original && total <= limit)
+        .map_or(5125, |(kind, _)| kind);
+    let indices = &computed.split.indices;
+    let bytes: Vec<u8> = match component {
+        5121 => indices.iter().map(|&i| i as u8).collect(),
+        5123 => indices.iter().flat_map(|&i| (i as u16).to_le_bytes()).collect(),
+        _ => indices.iter().flat_map(|&i| i.to_le_bytes()).collect(),
+    };
+    let view = appender.view(&bytes, None, ELEMENT_ARRAY_BUFFER);
+    appender.accessor(json!({
+        "bufferView": view,
+        "componentType": component,
+        "count": indices.len(),
+        "type": "SCALAR",
+    }))
+}
+
+/// A unit tangent perpendicular to `normal` (Duff et al. 2017), `w = 1`; `+x` when the normal
+/// has no direction.
+fn frame_from_normal(normal: [f32; 3]) -> [f32; 4] {
+    let length = normal.iter().map(|c| c * c).sum::<f32>().sqrt();
+    if !(length.is_finite() && length > 0.0) {
+        return [1.0, 0.0, 0.0, 1.0];
+    }
+    let [x, y, z] = normal.map(|c| c / length);
+    let sign = 1.0f32.copysign(z);
+    let a = -1.0 / (sign + z);
+    let b = x * y * a;
+    [1.0 + sign * x * x * a, sign * b, -sign * x, 1.0]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::frame_from_normal;
+
+    #[test]
+    fn frames_from_normals_are_unit_and_perpendicular() {
+        for n in [
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [0.3, -0.4, 0.1],
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+        ] {
+            let t = frame_from_normal(n);
+            let length = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            assert!((length - 1.0).abs() < 1e-6, "{n:?} -> {t:?}");
+            let dot = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
+            assert!(dot.abs() < 1e-6, "{n:?} -> {t:?}");
+            assert_eq!(t[3], 1.0);
+        }
+    }
+}

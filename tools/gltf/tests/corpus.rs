@@ -1,0 +1,370 @@
+//! The tool on every glTF and GLB file of the mesh corpus (`../shared/meshes/`, README: "Test
+//! corpus"), run once with `--overwrite` so that every eligible primitive is recomputed:
+//! tangents equal mikktspace.c's per corner except where the summary counts a repair, everything
+//! else is preserved, a second run on the output changes nothing, and the Khronos glTF Validator
+//! finds no error or warning the input did not have.
+
+mod common;
+
+use std::collections::{BTreeSet, HashSet};
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use common::document::{normal_texcoord_set, Doc};
+use common::{load, mikktspace_reference, needs, tool, validator};
+use serde_json::Value;
+
+/// The tool's run over the corpus, shared by the tests of this file.
+struct Converted {
+    /// (input, output) per file.
+    files: Vec<(PathBuf, PathBuf)>,
+    stdout: String,
+}
+
+/// Every glTF and GLB of the manifest. The 849k-vertex FlightHelmet.cc1.glb only in release
+/// builds: in a debug build the tool alone takes about 16 s on it, and the reference, the reads
+/// and the validator several times that.
+fn corpus_files() -> Vec<PathBuf> {
+    needs::CORPUS.require();
+    let dir = needs::corpus_manifest()
+        .parent()
+        .expect("the corpus folder")
+        .to_path_buf();
+    let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
+    rows.iter()
+        .filter(|row| row.format == "gltf" || row.format == "glb")
+        .filter(|row| !cfg!(debug_assertions) || row.vertices < 500_000)
+        .map(|row| dir.join(&row.path))
+        .collect()
+}
+
+fn converted() -> &'static Converted {
+    static CONVERTED: OnceLock<Converted> = OnceLock::new();
+    CONVERTED.get_or_init(|| {
+        let inputs = corpus_files();
+        let out_dir = tool::fresh_dir("corpus");
+        let output = tool::run(
+            ["--overwrite".as_ref(), "--out-dir".as_ref(), out_dir.as_os_str()]
+                .into_iter()
+                .chain(inputs.iter().map(|p| p.as_os_str())),
+        );
+        assert!(output.status.success(), "the tool failed on the corpus");
+        let files = inputs
+            .iter()
+            .map(|input| (input.clone(), out_dir.join(input.file_name().expect("a file name"))))
+            .collect();
+        Converted {
+            files,
+            stdout: String::from_utf8(output.stdout).expect("UTF-8"),
+        }
+    })
+}
+
+/// Whether the tool gave primitive `(m, p)` a new TANGENT.
+fn processed(input: &Doc, output: &Doc, m: usize, p: usize) -> bool {
+    output.attribute(m, p, "TANGENT").is_some() && output.attribute(m, p, "TANGENT") != input.attribute(m, p, "TANGENT")
+}
+
+/// Primitives drawing the same accessors with the same texture coordinates are computed once.
+fn geometry_key(json: &Value, primitive: &Value) -> String {
+    let mut attributes = primitive["attributes"].clone();
+    if let Some(map) = attributes.as_object_mut() {
+        map.remove("TANGENT");
+    }
+    format!(
+        "{attributes} {} {} {}",
+        primitive["indices"],
+        primitive["targets"],
+        normal_texcoord_set(json, primitive)
+    )
+}
+
+#[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: \"Test corpus\")"
+)]
+fn tangents_equal_mikktspace_c_per_corner_except_repaired_ones() {
+    let converted = converted();
+    let mut checked_corners = 0;
+    for (input_path, output_path) in &converted.files {
+        let (input, output) = (Doc::open(input_path), Doc::open(output_path));
+        let mut differing = 0;
+        let mut seen = HashSet::new();
+        for (m, mesh) in input.json["meshes"].as_array().into_iter().flatten().enumerate() {
+            for (p, primitive) in mesh["primitives"].as_array().into_iter().flatten().enumerate() {
+                if !processed(&input, &output, m, p) || !seen.insert(geometry_key(&input.json, primitive)) {
+                    continue;
+                }
+                let set = normal_texcoord_set(&input.json, primitive);
+                let (before, after) = (input.corners(m, p, set), output.corners(m, p, set));
+                let reference = mikktspace_reference::reference_corners(
+                    &before.positions,
+                    &before.normals,
+                    &before.texcoords,
+                    Some(&before.indices),
+                    true,
+                )
+                .unwrap_or_else(|| {
+                    panic!(
+                        "{}: mikktspace.c failed on mesh {m} primitive {p}",
+                        input_path.display()
+                    )
+                });
+                let tangents = after.tangents.expect("TANGENT");
+                assert_eq!(
+                    after.indices.len(),
+                    before.indices.len(),
+                    "{}: corner count",
+                    output_path.display()
+                );
+                for (c, &vertex) in after.indices.iter().enumerate() {
+                    let t = tangents[vertex as usize];
+                    let length = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                    assert!(
+                        (length - 1.0).abs() < 1e-4 && (t[3] == 1.0 || t[3] == -1.0),
+                        "{}: mesh {m} primitive {p} corner {c}: {t:?} is no valid tangent",
+                        output_path.display()
+                    );
+                    if t.map(f32::to_bits) != reference[c].map(f32::to_bits) {
+                        differing += 1;
+                    }
+                }
+                checked_corners += after.indices.len();
+            }
+        }
+        assert_eq!(
+            differing,
+            tool::repaired_corners(&converted.stdout, input_path),
+            "{}: corners that differ from mikktspace.c against corners the summary says were repaired",
+            input_path.display()
+        );
+    }
+    assert!(checked_corners > 100_000, "only {checked_corners} corners checked");
+}
+
+#[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: \"Test corpus\")"
+)]
+fn everything_but_the_new_tangents_is_preserved() {
+    for (input_path, output_path) in &converted().files {
+        let (input, output) = (Doc::open(input_path), Doc::open(output_path));
+        let what = output_path.display();
+        check_document(&input, &output);
+        for (m, mesh) in input.json["meshes"].as_array().into_iter().flatten().enumerate() {
+            for (p, before) in mesh["primitives"].as_array().into_iter().flatten().enumerate() {
+                let after = output.primitive_json(m, p);
+                if !processed(&input, &output, m, p) {
+                    assert_eq!(before, after, "{what}: mesh {m} primitive {p} was left alone");
+                    continue;
+                }
+                check_primitive(&input, &output, m, p);
+            }
+        }
+    }
+}
+
+/// Everything outside the meshes, accessors, bufferViews, buffers and images is unchanged; those
+/// only grow, and URIs still name the same files.
+fn check_document(input: &Doc, output: &Doc) {
+    let what = output.path.display();
+    let changed = ["accessors", "bufferViews", "buffers", "meshes", "images"];
+    let (before, after) = (input.json.as_object().unwrap(), output.json.as_object().unwrap());
+    for (key, value) in before {
+        if !changed.contains(&key.as_str()) {
+            assert_eq!(Some(value), after.get(key), "{what}: {key}");
+        }
+    }
+    for key in after.keys() {
+        assert!(
+            before.contains_key(key) || changed.contains(&key.as_str()),
+            "{what}: new {key}"
+        );
+    }
+    for key in ["accessors", "bufferViews"] {
+        let (old, new) = (before[key].as_array().unwrap(), after[key].as_array().unwrap());
+        assert_eq!(old[..], new[..old.len()], "{what}: the existing {key}");
+    }
+    for key in ["buffers", "images"] {
+        let Some(old) = before.get(key).and_then(Value::as_array) else {
+            continue;
+        };
+        let new = after[key].as_array().unwrap();
+        for (i, (old, new)) in old.iter().zip(new).enumerate() {
+            for (field, value) in old.as_object().unwrap() {
+                match (field.as_str(), value.as_str()) {
+                    ("uri", Some(uri)) if !uri.starts_with("data:") => assert_eq!(
+                        input.resolve(uri),
+                        output.resolve(new["uri"].as_str().unwrap()),
+                        "{what}: {key}[{i}] names another file"
+                    ),
+                    ("byteLength", _) => assert!(new[field].as_u64() >= value.as_u64(), "{what}: {key}[{i}]"),
+                    _ => assert_eq!(Some(value), new.get(field), "{what}: {key}[{i}].{field}"),
+                }
+            }
+        }
+    }
+    let (old, new) = (
+        before["meshes"].as_array().unwrap(),
+        after["meshes"].as_array().unwrap(),
+    );
+    assert_eq!(old.len(), new.len(), "{what}: meshes");
+    for (old, new) in old.iter().zip(new) {
+        for (field, value) in old.as_object().unwrap() {
+            if field != "primitives" {
+                assert_eq!(Some(value), new.get(field), "{what}: mesh {field}");
+            }
+        }
+        assert_eq!(
+            old["primitives"].as_array().unwrap().len(),
+            new["primitives"].as_array().unwrap().len()
+        );
+    }
+}
+
+/// A processed primitive: the same fields and attributes plus TANGENT, every attribute and
+/// target of one count, and every corner reading exactly the bytes it read before.
+fn check_primitive(input: &Doc, output: &Doc, m: usize, p: usize) {
+    let what = format!("{}: mesh {m} primitive {p}", output.path.display());
+    let (before, after) = (input.primitive_json(m, p), output.primitive_json(m, p));
+    for (field, value) in before.as_object().unwrap() {
+        if !["attributes", "indices", "targets"].contains(&field.as_str()) {
+            assert_eq!(Some(value), after.get(field), "{what}: {field}");
+        }
+    }
+    let names = |v: &Value| {
+        v.as_object()
+            .map(|o| o.keys().cloned().collect::<BTreeSet<_>>())
+            .unwrap_or_default()
+    };
+    let mut expected = names(&before["attributes"]);
+    expected.insert("TANGENT".into());
+    assert_eq!(expected, names(&after["attributes"]), "{what}: attribute names");
+    let targets = |v: &Value| v["targets"].as_array().map(|t| t.iter().map(names).collect::<Vec<_>>());
+    assert_eq!(targets(before), targets(after), "{what}: morph targets");
+
+    let vertex_count = output.count(output.attribute(m, p, "POSITION").unwrap());
+    let all_after = after["attributes"].as_object().unwrap().values().chain(
+        after["targets"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .flat_map(|t| t.as_object().unwrap().values()),
+    );
+    for accessor in all_after {
+        assert_eq!(
+            output.count(accessor.as_u64().unwrap() as usize),
+            vertex_count,
+            "{what}: counts"
+        );
+    }
+
+    // Each corner reads what it read before, in every attribute and morph target.
+    let set = normal_texcoord_set(&input.json, before);
+    let (old_corners, new_corners) = (input.corners(m, p, set).indices, output.corners(m, p, set).indices);
+    let pairs = before["attributes"]
+        .as_object()
+        .unwrap()
+        .iter()
+        .filter(|(name, _)| name.as_str() != "TANGENT")
+        .map(|(name, old)| (name.clone(), old.clone(), after["attributes"][name].clone()))
+        .chain(
+            before["targets"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .enumerate()
+                .flat_map(|(k, target)| {
+                    target.as_object().unwrap().iter().map(move |(name, old)| {
+                        (
+                            format!("target {k} {name}"),
+                            old.clone(),
+                            after["targets"][k][name].clone(),
+                        )
+                    })
+                }),
+        );
+    for (name, old, new) in pairs {
+        let (old, new) = (
+            input.elements(old.as_u64().unwrap() as usize),
+            output.elements(new.as_u64().unwrap() as usize),
+        );
+        for (c, (&i, &j)) in old_corners.iter().zip(&new_corners).enumerate() {
+            assert_eq!(old[i as usize], new[j as usize], "{what}: {name} at corner {c}");
+        }
+    }
+
+    // Indices keep their 16-bit type where the vertices still fit it.
+    if let (Some(old), Some(new)) = (before["indices"].as_u64(), after["indices"].as_u64()) {
+        let kind = |doc: &Doc, i: u64| doc.json["accessors"][i as usize]["componentType"].as_u64().unwrap();
+        if kind(input, old) == 5123 && vertex_count < 65535 {
+            assert_eq!(kind(output, new), 5123, "{what}: index type");
+        }
+    }
+}
+
+#[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: \"Test corpus\")"
+)]
+fn a_second_run_without_overwrite_writes_the_same_bytes() {
+    for (_, output) in &converted().files {
+        let name = output.file_name().unwrap().to_string_lossy();
+        // The same folder, so that relative URIs stay as they are.
+        let again = output.with_file_name(format!("again.{name}"));
+        let result = tool::run([output.as_os_str(), "-o".as_ref(), again.as_os_str()]);
+        assert!(result.status.success());
+        assert!(
+            String::from_utf8_lossy(&result.stdout).contains(": 0 primitives done, 0 vertices added"),
+            "{}: the second run changed primitives",
+            output.display()
+        );
+        let (first, second) = (std::fs::read(output).unwrap(), std::fs::read(&again).unwrap());
+        assert!(
+            first == second,
+            "{}: the second run wrote other bytes",
+            output.display()
+        );
+        let stem = again.file_stem().unwrap().to_string_lossy().into_owned();
+        assert!(
+            !again.with_file_name(format!("{stem}.tangents.bin")).exists(),
+            "{}: the second run wrote a buffer",
+            output.display()
+        );
+    }
+}
+
+#[test]
+#[cfg_attr(
+    tbasis_missing_corpus,
+    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: \"Test corpus\")"
+)]
+#[cfg_attr(
+    tbasis_missing_gltf_validator,
+    ignore = "needs node with the Khronos glTF Validator (npm install --prefix tools/gltf/node_modules_dir gltf-validator)"
+)]
+fn outputs_pass_the_validator_with_no_issue_the_input_lacked() {
+    needs::GLTF_VALIDATOR.require();
+    let mut failures = Vec::new();
+    for (input, output) in &converted().files {
+        let before = validator::codes(&validator::issues(input));
+        let after = validator::issues(output);
+        let new: Vec<String> = after
+            .iter()
+            .filter(|issue| !before.contains(&issue.code))
+            .map(|issue| {
+                format!(
+                    "{} {} at {}: {}",
+                    issue.code, issue.severity, issue.pointer, issue.message
+                )
+            })
+            .collect();
+        if !new.is_empty() {
+            failures.push(format!("{}:\n  {}", output.display(), new.join("\n  ")));
+        }
+    }
+    assert!(failures.is_empty(), "new validator issues:\n{}", failures.join("\n"));
+}
