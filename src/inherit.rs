@@ -368,26 +368,7 @@ mod tests {
         }
     }
 
-    /// xorshift64*: reproducible without a dependency.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-        }
-        fn below(&mut self, n: usize) -> usize {
-            (self.next() % n as u64) as usize
-        }
-        fn unit(&mut self) -> f32 {
-            (self.next() >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn chance(&mut self, percent: usize) -> bool {
-            self.below(1000) < percent * 10
-        }
-    }
+    use crate::test_rng::TestRng as Rng;
 
     #[derive(Clone, Copy, PartialEq)]
     enum Form {

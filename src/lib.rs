@@ -37,6 +37,8 @@ mod status;
 #[allow(unsafe_code)]
 mod strided;
 #[cfg(test)]
+mod test_rng;
+#[cfg(test)]
 mod thread_count_tests;
 mod transform;
 mod validate;

@@ -8,6 +8,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 
+use crate::test_rng::TestRng;
 use crate::{
     generate, generate_corners, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Report, Strided,
     StridedMut,
@@ -24,27 +25,9 @@ struct RandomMesh {
     indices: Option<Vec<u32>>,
 }
 
-/// xorshift64*: a few lines, enough to spread test meshes.
-struct Bits(u64);
-
-impl Bits {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
-
 impl RandomMesh {
     fn new(vertex_count: usize, seed: u64, indexed: bool) -> Self {
-        let mut bits = Bits(seed | 1);
+        let mut bits = TestRng(seed | 1);
         let width = (vertex_count as f32).sqrt().ceil() as usize;
         let mut mesh = RandomMesh {
             positions: Vec::with_capacity(vertex_count),
@@ -78,7 +61,7 @@ impl RandomMesh {
         let mut indices = Vec::with_capacity(6 * vertex_count);
         for v in 0..vertex_count {
             for _ in 0..2 {
-                let near = |bits: &mut Bits| (v + bits.below(2 * width + 2)).min(vertex_count - 1) as u32;
+                let near = |bits: &mut TestRng| (v + bits.below(2 * width + 2)).min(vertex_count - 1) as u32;
                 let far = bits.below(vertex_count) as u32;
                 let second = near(&mut bits);
                 let third = if bits.below(40) == 0 { far } else { near(&mut bits) };

@@ -76,11 +76,6 @@ pub const PKG_CONFIG: Need = Need {
     what: "pkg-config (Debian: pkg-config)",
     probe: Probe::Programs(&["pkg-config"]),
 };
-pub const PYTHON: Need = Need {
-    name: "python",
-    what: "python3 with numpy and pytest (Debian: python3, then python3 -m pip install numpy pytest)",
-    probe: Probe::Python("import numpy, pytest"),
-};
 pub const PYTHON_VENV: Need = Need {
     name: "python_venv",
     what: "python3 (3.9 or later) with its venv and pip modules (Debian: python3-venv, python3-pip); the \
@@ -98,7 +93,7 @@ pub const GLTF_VALIDATOR: Need = Need {
 /// Where `.ci/run` installs the glTF Validator, below the repository root.
 pub const GLTF_VALIDATOR_MODULE: &str = "tools/gltf/node_modules_dir/node_modules/gltf-validator";
 
-pub const ALL: [&Need; 10] = [
+pub const ALL: [&Need; 9] = [
     &CORPUS,
     &BINUTILS,
     &CXX,
@@ -106,7 +101,6 @@ pub const ALL: [&Need; 10] = [
     &SANITIZERS,
     &CMAKE,
     &PKG_CONFIG,
-    &PYTHON,
     &GLTF_VALIDATOR,
     &PYTHON_VENV,
 ];

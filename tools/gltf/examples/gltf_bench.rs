@@ -4,7 +4,7 @@
 //!
 //! ```sh
 //! cargo build --release -p tbasis-gltf --examples --bins
-//! cargo run --release -p tbasis-gltf --example bench
+//! cargo run --release -p tbasis-gltf --example gltf_bench
 //! ```
 //!
 //! Prints a Markdown table (docs/gltf.md records a run). Each command runs `RUNS` times; the
@@ -77,7 +77,7 @@ fn main() {
     }
 }
 
-/// The release binary beside this example (target/release/examples/bench -> target/release).
+/// The release binary beside this example (target/release/examples/gltf_bench -> target/release).
 fn tool_path() -> PathBuf {
     let exe = std::env::current_exe().expect("the example's path");
     let release = exe.parent().and_then(Path::parent).expect("target/<profile>");
