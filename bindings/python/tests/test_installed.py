@@ -13,7 +13,11 @@ from support import REPOSITORY
 
 def test_the_package_is_the_installed_one_not_the_source_tree() -> None:
     package = Path(tbasis.__file__).resolve().parent
-    assert REPOSITORY not in package.parents, f"tbasis was imported from the repository: {package}"
+    # The virtual environment may sit in the repository's target directory: what matters is that
+    # the package comes from its site-packages, not from the sources.
+    sources = REPOSITORY / "bindings" / "python"
+    assert sources not in package.parents, f"tbasis was imported from the source tree: {package}"
+    assert "site-packages" in package.parts, f"tbasis is not an installed package: {package}"
     assert Path(tbasis._native.__file__).parent == package
     for name in ("py.typed", "_native.pyi"):
         assert (package / name).is_file(), name
