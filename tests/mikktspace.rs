@@ -41,7 +41,7 @@ use common::run::UNTOUCHED;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::select;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::Config;
 use tbasis::{
     generate_corners, generate_corners_into, generate_into, scratch_size_for, Indices, Mesh, Options, Output, Report,
     Strided, StridedMut,
@@ -986,25 +986,8 @@ fn check_random(m: &RandomMesh) -> Result<(), String> {
     }
 }
 
-/// `cases` cases from a fixed seed, so that every run checks the same inputs; `PROPTEST_CASES`
-/// and `PROPTEST_RNG_SEED` explore further. No regression files are written.
 fn config(cases: u32) -> Config {
-    let default = Config::default();
-    let from_env = |name: &str| std::env::var_os(name).is_some();
-    Config {
-        cases: if from_env("PROPTEST_CASES") {
-            default.cases
-        } else {
-            cases
-        },
-        rng_seed: if from_env("PROPTEST_RNG_SEED") {
-            default.rng_seed
-        } else {
-            RngSeed::Fixed(0x6d69_6b6b)
-        },
-        failure_persistence: None,
-        ..default
-    }
+    common::proptest_config::fixed(cases, 0x6d69_6b6b)
 }
 
 proptest! {

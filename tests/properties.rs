@@ -16,7 +16,7 @@ use common::invariants::{check_invariants, unit_normal};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::Index;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::Config;
 use tbasis::{
     generate_into, scratch_size, scratch_size_for, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output,
     Report, Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
@@ -876,25 +876,8 @@ fn check(s: &Scenario) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// `cases` cases from a fixed seed, so that every run checks the same inputs; `PROPTEST_CASES`
-/// and `PROPTEST_RNG_SEED` explore further. No regression files are written.
 fn config(cases: u32) -> Config {
-    let default = Config::default();
-    let from_env = |name: &str| std::env::var_os(name).is_some();
-    Config {
-        cases: if from_env("PROPTEST_CASES") {
-            default.cases
-        } else {
-            cases
-        },
-        rng_seed: if from_env("PROPTEST_RNG_SEED") {
-            default.rng_seed
-        } else {
-            RngSeed::Fixed(0x7B45_1515)
-        },
-        failure_persistence: None,
-        ..default
-    }
+    common::proptest_config::fixed(cases, 0x7B45_1515)
 }
 
 proptest! {

@@ -8,7 +8,6 @@ mod common;
 
 use common::load;
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
 use std::collections::HashMap;
 use tbasis::{
     copy_split_vertices, generate_corners, split_corners, Error, Indices, Mesh, Options, SeamSplit, Strided, StridedMut,
@@ -98,12 +97,7 @@ const PALETTE: [[f32; 4]; 5] = [
 ];
 
 proptest! {
-    #![proptest_config(Config {
-        cases: 256,
-        rng_seed: RngSeed::Fixed(0x5EA5_5117),
-        failure_persistence: None,
-        ..Config::default()
-    })]
+    #![proptest_config(common::proptest_config::fixed(256, 0x5EA5_5117))]
 
     #[test]
     fn random_splits_keep_every_corner_and_nothing_more(

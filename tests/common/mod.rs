@@ -8,6 +8,7 @@ pub mod load;
 pub mod mikktspace_reference;
 pub mod mikktspace_scenes;
 pub mod needs;
+pub mod proptest_config;
 pub mod run;
 pub mod scenes;
 pub mod shapes;
