@@ -1,4 +1,4 @@
-//! Generates the C header from `src/ffi.rs` into `$OUT_DIR/tbasis.h`, with version macros from
+//! Generates the C header from `src/` into `$OUT_DIR/tbasis.h`, with version macros from
 //! Cargo.toml. The committed `include/tbasis.h` must equal it: a test compares the two, and
 //! `TBASIS_WRITE_HEADER=1 cargo build` copies the generated one over the committed one.
 //!
@@ -40,34 +40,7 @@ fn main() {
         std::fs::copy(&out, crate_dir.join("include/tbasis.h")).expect("copy header");
     }
 
-    compile_listing(&crate_dir);
     declare_test_needs(&crate_dir);
-}
-
-/// Compiles `c_tests/listing.c`, the C port of the original listing, into a static archive that
-/// only examples and benches link (they compare against it). cc's own link metadata is turned off:
-/// it would link the archive into the library too, whose exports must stay `tbasis_*` only.
-fn compile_listing(crate_dir: &std::path::Path) {
-    println!("cargo:rerun-if-changed=c_tests/listing.c");
-    println!("cargo:rerun-if-changed=c_tests/listing.h");
-    let mut build = cc::Build::new();
-    build.file(crate_dir.join("c_tests/listing.c")).cargo_metadata(false);
-    // The port matches the listing bit for bit only when no multiply-add is fused.
-    let msvc = build.get_compiler().is_like_msvc();
-    build.flag(if msvc { "/fp:precise" } else { "-ffp-contract=off" });
-    build.compile("tbasis_listing");
-    let archive = PathBuf::from(env::var("OUT_DIR").unwrap()).join(if msvc {
-        "tbasis_listing.lib"
-    } else {
-        "libtbasis_listing.a"
-    });
-    println!("cargo:rustc-link-arg-examples={}", archive.display());
-    // Cargo refuses a bench link argument in a package without benches; benches/ is watched once
-    // it exists (a new benches/ needs one rebuild of this script: touch build.rs).
-    if crate_dir.join("benches").is_dir() {
-        println!("cargo:rerun-if-changed=benches");
-        println!("cargo:rustc-link-arg-benches={}", archive.display());
-    }
 }
 
 /// Gives the Linux shared library the ABI name that executables record and later load:

@@ -327,6 +327,44 @@ static void test_legacy_flip_v(const char *name, const test_mesh *m, const float
 }
 
 /* Everything LEGACY must reproduce for one mesh in one index form (0: unindexed). */
+/* The listing's own types (Lengyel 2001): legacy code that holds its mesh in them swaps one call,
+   as the README shows, and gets the listing's bits. */
+typedef struct { float x, y, z; } Point3D;
+typedef struct { float x, y, z; } Vector3D;
+typedef struct { float x, y; } Point2D;
+typedef struct { float x, y, z, w; } Vector4D;
+typedef struct { unsigned short index[3]; } Triangle;
+
+static void test_legacy_swap(const test_mesh *m, const float *reference)
+{
+    long vertexCount = m->vertex_count, triangleCount = m->triangle_count;
+    size_t n = (size_t)vertexCount;
+    Point3D *vertex = malloc(n * sizeof *vertex + 1);
+    Vector3D *normal = malloc(n * sizeof *normal + 1);
+    Point2D *texcoord = malloc(n * sizeof *texcoord + 1);
+    Triangle *triangle = malloc((size_t)triangleCount * sizeof *triangle + 1);
+    Vector4D *tangent = calloc(n + 1, sizeof *tangent);
+    tbasis_status status;
+
+    if (check(vertex && normal && texcoord && triangle && tangent, "%s: out of memory", m->name)) {
+        memcpy(vertex, m->positions, n * sizeof *vertex);
+        memcpy(normal, m->normals, n * sizeof *normal);
+        memcpy(texcoord, m->texcoords, n * sizeof *texcoord);
+        memcpy(triangle, m->indices16, (size_t)triangleCount * sizeof *triangle);
+        /* CalculateTangentArray(vertexCount, vertex, normal, texcoord, triangleCount, triangle, tangent); */
+        status = tbasis_calculate_tangent_array(vertexCount, &vertex->x, &normal->x, &texcoord->x,
+                                                triangleCount, triangle->index, &tangent->x);
+        if (expect_status("the listing's types, one call swapped", status, TBASIS_OK) &&
+            check_float_bits("the listing's types, one call swapped", reference, &tangent->x, 4 * n))
+            exact_results += (long)n;
+    }
+    free(vertex);
+    free(normal);
+    free(texcoord);
+    free(triangle);
+    free(tangent);
+}
+
 static void test_legacy_form(const test_mesh *m, uint32_t index_type, int expect_nonfinite)
 {
     char name[128], what[256];
@@ -406,6 +444,7 @@ static void test_legacy_form(const test_mesh *m, uint32_t index_type, int expect
                 exact_results += (long)n;
             check(guards_intact(&out), "%s: wrote outside the tangent array", what);
         }
+        test_legacy_swap(m, reference);
     }
     if (index_type == TBASIS_INDEX_U32)
         test_legacy_flip_v(name, m, reference);
@@ -468,18 +507,20 @@ static void test_degenerate_triangles(const test_mesh *grid)
     memset(&report, 0x5A, sizeof report);
     expect_status("REJECT on two collapsed UV triangles", tbasis_generate(&desc, &options, &output, &report),
                   TBASIS_ERROR_DEGENERATE_UV);
-    check(report.degenerate_triangles == 2 && report.first_degenerate_triangle == (size_t)first,
-          "REJECT report: %zu degenerate, first %zu; expected 2, first %ld", report.degenerate_triangles,
-          report.first_degenerate_triangle, first);
+    check(report.degenerate_triangles == 2 && report.first_degenerate_triangle == (size_t)first &&
+              report.failed_triangle == (size_t)first,
+          "REJECT report: %zu degenerate, first %zu, failed %zu; expected 2, first %ld", report.degenerate_triangles,
+          report.first_degenerate_triangle, report.failed_triangle, first);
     check(guarded_intact(&tangents) && guarded_intact(&bitangents), "REJECT wrote into its outputs");
 
     options = policy_options(TBASIS_DEGENERATE_SKIP);
     memset(&report, 0x5A, sizeof report);
     if (expect_status("SKIP on two collapsed UV triangles", tbasis_generate(&desc, &options, &output, &report),
                       TBASIS_OK)) {
-        check(report.degenerate_triangles == 2 && report.first_degenerate_triangle == (size_t)first,
-              "SKIP report: %zu degenerate, first %zu; expected 2, first %ld", report.degenerate_triangles,
-              report.first_degenerate_triangle, first);
+        check(report.degenerate_triangles == 2 && report.first_degenerate_triangle == (size_t)first &&
+                  report.failed_triangle == SIZE_MAX,
+              "SKIP report: %zu degenerate, first %zu, failed %zu; expected 2, first %ld, none failed",
+              report.degenerate_triangles, report.first_degenerate_triangle, report.failed_triangle, first);
         check_frames("SKIP on two collapsed UV triangles: frames", n, m.normals, tangents.inner, bitangents.inner, 0);
     }
 
@@ -721,6 +762,15 @@ static void test_statuses(fixture *f)
     index16 = (uint16_t)n;
     memcpy(a->indices + 2 * (3 * t - 1), &index16, sizeof index16);
     expect(f, "u16 index == vertex_count in the last triangle", TBASIS_ERROR_INDEX_OUT_OF_RANGE);
+    {
+        /* The report names the triangle at fault, the only thing filled. */
+        tbasis_report report;
+        memset(&report, 0x5A, sizeof report);
+        tbasis_generate(f->mesh_arg, &f->options, f->output_arg, &report);
+        check(report.failed_triangle == (size_t)(t - 1) && report.degenerate_triangles == 0 &&
+                  report.first_degenerate_triangle == SIZE_MAX,
+              "index out of range: report names triangle %zu, expected %ld", report.failed_triangle, t - 1);
+    }
     fixture_reset(f);
     fixture_use_u32(f);
     expect(f, "fixture baseline with u32 indices", TBASIS_OK);

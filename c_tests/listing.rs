@@ -1,5 +1,5 @@
 //! Rust's view of the C port of the original listing (`listing.c`, `listing.h`), for the
-//! programs that link it: the chart and benchmark examples (through build.rs) and the fuzz target
+//! programs that link it: the chart and benchmark examples (through crates/compare/build.rs) and the fuzz target
 //! (through fuzz/build.rs). Include it with `#[path]`.
 
 use core::ffi::c_long;

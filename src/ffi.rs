@@ -3,70 +3,20 @@
 //! Each function copies the caller's descriptor structs by value, turns pointers and strides into
 //! bounds-carrying views (checking NULLs, strides and sizes), and calls the safe core inside
 //! `catch_unwind`. The doc comments here are the manual cbindgen writes into `include/tbasis.h`.
-#![allow(non_camel_case_types)]
 
 use core::ffi::{c_char, c_long, c_void};
 use core::mem::size_of;
 use core::ptr;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use crate::generate::{generate_corners_into, generate_into, scratch_bytes, scratch_size_for};
-use crate::mesh::{Indices, Mesh, Output};
-use crate::options::Options;
-use crate::report::Report;
-use crate::seam_split::{copy_split_vertices, split_corners};
-use crate::status::Error;
-use crate::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
-use crate::transform::{from_tangent_space, to_tangent_space};
-use crate::validate::{check_overlaps, check_written};
+use tbasis::{
+    check_written, copy_split_vertices, from_tangent_space, generate, generate_corners, generate_corners_with_scratch,
+    generate_with_scratch, scratch_size_for, scratch_size_for_counts, span_bytes, split_corners, to_tangent_space,
+    Buffer, DegeneratePolicy, Element, Error, Footprint, Indices, Mesh, Method, Options, Output, Report, Strided,
+    StridedMut,
+};
 
-/// Result of a call: `TBASIS_OK` (0) or one of the `TBASIS_ERROR_*` values, which never change.
-pub type tbasis_status = u32;
-
-/// Success.
-pub const TBASIS_OK: tbasis_status = 0;
-/// A required pointer is NULL: `mesh`, `output`, `output->tangents`, the `tangents` of
-/// `tbasis_generate_corners` when the mesh has corners, or a vertex or index buffer whose count is
-/// nonzero (`texcoords` may be NULL except with policy LEGACY or method MIKKTSPACE).
-pub const TBASIS_ERROR_NULL_POINTER: tbasis_status = 1;
-/// A stride is smaller than its element: 12 bytes for positions and normals, 8 for texcoords,
-/// 16 for tangents, 12 for bitangents.
-pub const TBASIS_ERROR_INVALID_STRIDE: tbasis_status = 2;
-/// `index_count` (or, when `indices` is NULL, `vertex_count`) is not a multiple of 3.
-pub const TBASIS_ERROR_INVALID_INDEX_COUNT: tbasis_status = 3;
-/// An index is not less than `vertex_count`.
-pub const TBASIS_ERROR_INDEX_OUT_OF_RANGE: tbasis_status = 4;
-/// `index_type` is neither `TBASIS_INDEX_U16` nor `TBASIS_INDEX_U32` while `indices` is not NULL.
-pub const TBASIS_ERROR_INVALID_INDEX_TYPE: tbasis_status = 5;
-/// `options->method` is not a `TBASIS_METHOD_*` value.
-pub const TBASIS_ERROR_UNKNOWN_METHOD: tbasis_status = 6;
-/// `options->degenerate_policy` is not a `TBASIS_DEGENERATE_*` value.
-pub const TBASIS_ERROR_UNKNOWN_POLICY: tbasis_status = 7;
-/// `options->flags` has a bit that no `TBASIS_FLAG_*` names.
-pub const TBASIS_ERROR_UNKNOWN_FLAGS: tbasis_status = 8;
-/// `stride * count`, or the address range a buffer spans, overflows.
-pub const TBASIS_ERROR_SIZE_OVERFLOW: tbasis_status = 9;
-/// An output byte is also an input byte, a byte of the other output, or a scratch byte (or the
-/// scratch shares a byte with an input). Interleaving outputs between inputs is fine.
-pub const TBASIS_ERROR_OVERLAP: tbasis_status = 10;
-/// Policy REJECT found a degenerate triangle; `report->first_degenerate_triangle` names it.
-pub const TBASIS_ERROR_DEGENERATE_UV: tbasis_status = 11;
-/// Allocating the scratch failed.
-pub const TBASIS_ERROR_OUT_OF_MEMORY: tbasis_status = 12;
-/// `options->scratch` is not NULL and `options->scratch_size` is below `tbasis_scratch_size`.
-pub const TBASIS_ERROR_SCRATCH_TOO_SMALL: tbasis_status = 13;
-/// `options->degenerate_threshold` is negative, NaN or infinite.
-pub const TBASIS_ERROR_INVALID_THRESHOLD: tbasis_status = 14;
-/// A count is negative (`tbasis_calculate_tangent_array` takes `long`).
-pub const TBASIS_ERROR_INVALID_COUNT: tbasis_status = 15;
-/// A bug in the library was caught at the boundary.
-pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
-/// `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
-/// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result
-/// component overflows float.
-pub const TBASIS_ERROR_INVALID_FRAME: tbasis_status = 17;
-/// `tbasis_split_corners`: the mesh would need more than 2^32 vertices, beyond 32-bit indices.
-pub const TBASIS_ERROR_TOO_MANY_VERTICES: tbasis_status = 18;
+use crate::status::*;
 
 /// `index_type`: 16-bit indices.
 pub const TBASIS_INDEX_U16: u32 = 1;
@@ -177,7 +127,8 @@ pub struct tbasis_output {
     pub bitangents_stride: usize,
 }
 
-/// What the call found; filled on `TBASIS_OK` and on `TBASIS_ERROR_DEGENERATE_UV`.
+/// What the call found; filled on `TBASIS_OK`, `TBASIS_ERROR_DEGENERATE_UV` and
+/// `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (then only `failed_triangle` is set, the counts are 0).
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct tbasis_report {
@@ -203,6 +154,11 @@ pub struct tbasis_report {
     /// Method MIKKTSPACE: vertices whose corners do not all get the same bits (the vertices a seam
     /// split must duplicate to draw them exactly). `tbasis_generate` gives each its first corner's.
     pub split_vertices: usize,
+    /// The triangle a refusal names: with `TBASIS_ERROR_INDEX_OUT_OF_RANGE` the first triangle
+    /// with an index `>= vertex_count` (its indices are `3 * failed_triangle` to
+    /// `3 * failed_triangle + 2`), with `TBASIS_ERROR_DEGENERATE_UV` the first degenerate triangle;
+    /// `SIZE_MAX` on `TBASIS_OK`.
+    pub failed_triangle: usize,
 }
 
 impl From<Report> for tbasis_report {
@@ -217,39 +173,62 @@ impl From<Report> for tbasis_report {
             abnormal_normals: r.abnormal_normals,
             repaired_corners: r.repaired_corners,
             split_vertices: r.split_vertices,
+            failed_triangle: usize::MAX,
         }
     }
 }
 
-/// Runs `body`, turning a panic (a library bug) into an error.
-fn boundary_value<T>(body: impl FnOnce() -> Result<T, Error>) -> Result<T, Error> {
-    catch_unwind(AssertUnwindSafe(body)).unwrap_or(Err(Error::Internal))
+/// Runs `body`, turning a panic (a library bug) into `TBASIS_ERROR_INTERNAL`.
+fn boundary_value<T>(body: impl FnOnce() -> Result<T, Failure>) -> Result<T, Failure> {
+    let guarded = || {
+        inject_panic();
+        body()
+    };
+    catch_unwind(AssertUnwindSafe(guarded)).unwrap_or(Err(Failure::Status(TBASIS_ERROR_INTERNAL)))
 }
 
-/// Runs `body` and turns a panic (a library bug) into `TBASIS_ERROR_INTERNAL`.
-fn boundary(body: impl FnOnce() -> Result<(), Error>) -> tbasis_status {
-    match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(Ok(())) => TBASIS_OK,
-        Ok(Err(error)) => error.code(),
-        Err(_) => TBASIS_ERROR_INTERNAL,
+/// With the test-only feature `fault-injection`, panics when `TBASIS_INJECT_PANIC` is set, so that
+/// a C test can see every entry point turn a library bug into `TBASIS_ERROR_INTERNAL`.
+#[cfg(feature = "fault-injection")]
+fn inject_panic() {
+    if std::env::var_os("TBASIS_INJECT_PANIC").is_some() {
+        panic!("TBASIS_INJECT_PANIC is set");
+    }
+}
+
+#[cfg(not(feature = "fault-injection"))]
+fn inject_panic() {}
+
+/// Runs `body` and returns its status, a panic (a library bug) becoming `TBASIS_ERROR_INTERNAL`.
+fn boundary(body: impl FnOnce() -> Result<(), Failure>) -> tbasis_status {
+    match boundary_value(body) {
+        Ok(()) => TBASIS_OK,
+        Err(failure) => failure.status(),
     }
 }
 
 /// Checks a C buffer: its stride covers its element, it is not NULL when it has elements, and its
 /// span `(count - 1) * stride + size` fits below the end of the address space.
-fn check_buffer(base: *const c_void, stride: usize, count: usize, size: usize) -> Result<(), Error> {
+fn check_buffer(base: *const c_void, stride: usize, count: usize, size: usize) -> Result<(), Failure> {
     let span = span_bytes(count, stride, size)?;
     if count > 0 && base.is_null() {
-        return Err(Error::NullPointer);
+        return Err(Failure::NULL_POINTER);
     }
-    (base as usize).checked_add(span).map(|_| ()).ok_or(Error::SizeOverflow)
+    (base as usize)
+        .checked_add(span)
+        .map(|_| ())
+        .ok_or(Failure::Library(Error::SizeOverflow))
 }
 
 /// A read view over caller memory, once [`check_buffer`] passes.
 ///
 /// # Safety
 /// The caller of the C function promised `base` is readable for the span the header documents.
-unsafe fn read_view<'a, T: Element>(base: *const c_void, stride: usize, count: usize) -> Result<Strided<'a, T>, Error> {
+unsafe fn read_view<'a, T: Element>(
+    base: *const c_void,
+    stride: usize,
+    count: usize,
+) -> Result<Strided<'a, T>, Failure> {
     check_buffer(base, stride, count, size_of::<T>())?;
     Ok(Strided::from_raw(base.cast(), stride, count))
 }
@@ -262,13 +241,13 @@ unsafe fn write_view<'a, T: Element>(
     base: *mut c_void,
     stride: usize,
     count: usize,
-) -> Result<StridedMut<'a, T>, Error> {
+) -> Result<StridedMut<'a, T>, Failure> {
     check_buffer(base, stride, count, size_of::<T>())?;
     Ok(StridedMut::from_raw(base.cast(), stride, count))
 }
 
 /// Builds the safe views of a C mesh description.
-unsafe fn mesh_views<'a>(m: &tbasis_mesh) -> Result<Mesh<'a>, Error> {
+unsafe fn mesh_views<'a>(m: &tbasis_mesh) -> Result<Mesh<'a>, Failure> {
     let count = m.vertex_count;
     let texcoords = if m.texcoords.is_null() {
         None
@@ -281,11 +260,11 @@ unsafe fn mesh_views<'a>(m: &tbasis_mesh) -> Result<Mesh<'a>, Error> {
         match m.index_type {
             TBASIS_INDEX_U16 => Indices::U16(read_view(m.indices, size_of::<u16>(), m.index_count)?),
             TBASIS_INDEX_U32 => Indices::U32(read_view(m.indices, size_of::<u32>(), m.index_count)?),
-            _ => return Err(Error::InvalidIndexType),
+            _ => return Err(Failure::Status(TBASIS_ERROR_INVALID_INDEX_TYPE)),
         }
     };
     if m.indices.is_null() && m.index_count != 0 {
-        return Err(Error::NullPointer);
+        return Err(Failure::NULL_POINTER);
     }
     Ok(Mesh {
         positions: read_view(m.positions, m.positions_stride, count)?,
@@ -296,7 +275,7 @@ unsafe fn mesh_views<'a>(m: &tbasis_mesh) -> Result<Mesh<'a>, Error> {
 }
 
 /// Builds the safe views of a C output description.
-unsafe fn output_views<'a>(o: &tbasis_output, count: usize) -> Result<Output<'a>, Error> {
+unsafe fn output_views<'a>(o: &tbasis_output, count: usize) -> Result<Output<'a>, Failure> {
     let bitangents = if o.bitangents.is_null() {
         None
     } else {
@@ -309,17 +288,43 @@ unsafe fn output_views<'a>(o: &tbasis_output, count: usize) -> Result<Output<'a>
 }
 
 /// The options a C call asks for, defaults for NULL.
-fn options_of(options: Option<tbasis_options>) -> Result<Options, Error> {
-    match options {
-        None => Ok(Options::default()),
-        Some(o) => Options::from_codes(
-            o.method,
-            o.degenerate_policy,
-            o.flags,
-            o.degenerate_threshold,
-            o.threads,
-        ),
+fn options_of(options: Option<tbasis_options>) -> Result<Options, Failure> {
+    let Some(o) = options else {
+        return Ok(Options::default());
+    };
+    let method = match o.method {
+        0 => Method::DEFAULT,
+        TBASIS_METHOD_LENGYEL => Method::Lengyel,
+        TBASIS_METHOD_ANGLE => Method::Angle,
+        TBASIS_METHOD_AREA => Method::Area,
+        TBASIS_METHOD_UNIFORM => Method::Uniform,
+        TBASIS_METHOD_MIKKTSPACE => Method::Mikktspace,
+        _ => return Err(Failure::Status(TBASIS_ERROR_UNKNOWN_METHOD)),
+    };
+    let policy = match o.degenerate_policy {
+        0 => DegeneratePolicy::default_for(method),
+        TBASIS_DEGENERATE_LEGACY => DegeneratePolicy::Legacy,
+        TBASIS_DEGENERATE_SKIP => DegeneratePolicy::Skip,
+        TBASIS_DEGENERATE_INHERIT => DegeneratePolicy::Inherit,
+        TBASIS_DEGENERATE_REJECT => DegeneratePolicy::Reject,
+        _ => return Err(Failure::Status(TBASIS_ERROR_UNKNOWN_POLICY)),
+    };
+    if o.flags & !TBASIS_FLAG_FLIP_V != 0 {
+        return Err(Failure::Status(TBASIS_ERROR_UNKNOWN_FLAGS));
     }
+    let threshold = if o.degenerate_threshold == 0.0 {
+        tbasis::DEFAULT_DEGENERATE_THRESHOLD
+    } else {
+        o.degenerate_threshold
+    };
+    let options = Options::default()
+        .with_method(method)
+        .with_policy(policy)
+        .with_flip_v(o.flags & TBASIS_FLAG_FLIP_V != 0)
+        .with_degenerate_threshold(threshold)
+        .with_threads(o.threads);
+    options.validate()?;
+    Ok(options)
 }
 
 /// Computes a unit tangent and handedness for every vertex.
@@ -334,7 +339,8 @@ fn options_of(options: Option<tbasis_options>) -> Result<Options, Error> {
 /// - `output->tangents`: `(vertex_count - 1) * tangents_stride + 16` bytes, written only on
 ///   `TBASIS_OK`; it may sit inside the same interleaved vertex array as the inputs, as long as
 ///   no byte is shared.
-/// - `report`: NULL, or filled on `TBASIS_OK` and on `TBASIS_ERROR_DEGENERATE_UV`.
+/// - `report`: NULL, or filled on `TBASIS_OK`, `TBASIS_ERROR_DEGENERATE_UV` and
+///   `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (see `tbasis_report`).
 ///
 /// With method LENGYEL and policy LEGACY the results are bit-identical to the original listing.
 /// With the other policies every tangent is finite, unit length, orthogonal to its (normalized)
@@ -357,17 +363,21 @@ pub unsafe extern "C" fn tbasis_generate(
 ) -> tbasis_status {
     boundary(|| {
         if mesh.is_null() || output.is_null() {
-            return Err(Error::NullPointer);
+            return Err(Failure::NULL_POINTER);
         }
         let (views, options_desc, opts) = call_inputs(mesh, options)?;
         let mut out = output_views(&ptr::read_unaligned(output), views.vertex_count())?;
 
         let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
-        let scratch = caller_scratch(options_desc, needed, |footprint| {
-            check_overlaps(&views, &out, Some(footprint))
-        })?;
-
-        with_report(report, |found| generate_into(&views, &opts, &mut out, scratch, found))
+        let written = [
+            (Buffer::Tangents, Some(out.tangents.footprint())),
+            (Buffer::Bitangents, out.bitangents.as_ref().map(|b| b.footprint())),
+        ];
+        let scratch = caller_scratch(options_desc, needed, &views, &written)?;
+        with_report(report, || match scratch {
+            Some(bytes) => generate_with_scratch(&views, &opts, &mut out, bytes),
+            None => generate(&views, &opts, &mut out),
+        })
     })
 }
 
@@ -379,52 +389,74 @@ pub unsafe extern "C" fn tbasis_generate(
 unsafe fn call_inputs<'a>(
     mesh: *const tbasis_mesh,
     options: *const tbasis_options,
-) -> Result<(Mesh<'a>, Option<tbasis_options>, Options), Error> {
+) -> Result<(Mesh<'a>, Option<tbasis_options>, Options), Failure> {
     let options_desc = (!options.is_null()).then(|| ptr::read_unaligned(options));
     let opts = options_of(options_desc)?;
     Ok((mesh_views(&ptr::read_unaligned(mesh))?, options_desc, opts))
 }
 
-/// Runs `call` and writes what it found to `report` (when not NULL) on success and on
-/// `TBASIS_ERROR_DEGENERATE_UV`, the two outcomes that fill a report.
+/// Runs `call` and writes what it found to `report` (when not NULL) on success, and on
+/// `TBASIS_ERROR_DEGENERATE_UV` and `TBASIS_ERROR_INDEX_OUT_OF_RANGE` with the triangle at fault.
 ///
 /// # Safety
 /// `report` must be NULL or writable.
-unsafe fn with_report(
-    report: *mut tbasis_report,
-    call: impl FnOnce(&mut Report) -> Result<(), Error>,
-) -> Result<(), Error> {
-    let mut found = Report::default();
-    let result = call(&mut found);
-    if matches!(result, Ok(()) | Err(Error::DegenerateUv)) && !report.is_null() {
-        ptr::write_unaligned(report, tbasis_report::from(found));
+unsafe fn with_report(report: *mut tbasis_report, call: impl FnOnce() -> Result<Report, Error>) -> Result<(), Failure> {
+    let (found, result) = match call() {
+        Ok(found) => (tbasis_report::from(found), Ok(())),
+        Err(Error::DegenerateUv { triangle, report }) => {
+            let failed = tbasis_report {
+                failed_triangle: triangle,
+                ..tbasis_report::from(report)
+            };
+            (failed, Err(Failure::Status(TBASIS_ERROR_DEGENERATE_UV)))
+        }
+        Err(error @ Error::IndexOutOfRange { triangle, .. }) => {
+            let failed = tbasis_report {
+                failed_triangle: triangle,
+                ..tbasis_report::from(Report::default())
+            };
+            (failed, Err(error.into()))
+        }
+        Err(error) => return Err(error.into()),
+    };
+    if !report.is_null() {
+        ptr::write_unaligned(report, found);
     }
     result
 }
 
 /// The caller's scratch bytes from `options`, once they are large enough (`needed`), span valid
-/// addresses and pass `check_overlaps`; `None` when the caller brings none.
+/// addresses and share no byte with the mesh or the `written` buffers; `None` when the caller
+/// brings none.
 ///
 /// # Safety
 /// A non-NULL `options.scratch` must be writable for `options.scratch_size` bytes for the call.
 unsafe fn caller_scratch<'a>(
     options: Option<tbasis_options>,
     needed: usize,
-    check_overlaps: impl FnOnce(Footprint) -> Result<(), Error>,
-) -> Result<Option<&'a mut [u8]>, Error> {
+    mesh: &Mesh,
+    written: &[(Buffer, Option<Footprint>)],
+) -> Result<Option<&'a mut [u8]>, Failure> {
     let Some(o) = options.filter(|o| !o.scratch.is_null()) else {
         return Ok(None);
     };
     if o.scratch_size < needed {
-        return Err(Error::ScratchTooSmall);
+        return Err(Error::ScratchTooSmall {
+            needed,
+            len: o.scratch_size,
+        }
+        .into());
     }
     check_buffer(o.scratch, 1, o.scratch_size, 1)?;
-    check_overlaps(Footprint {
+    let scratch = Footprint {
         start: o.scratch as usize,
         stride: 1,
         size: 1,
         count: o.scratch_size,
-    })?;
+    };
+    let mut all = written.to_vec();
+    all.push((Buffer::Scratch, Some(scratch)));
+    check_written(mesh, &all)?;
     // The slice is formed only once it is known to share no byte with any other buffer.
     Ok(Some(core::slice::from_raw_parts_mut(
         o.scratch.cast::<u8>(),
@@ -469,17 +501,16 @@ pub unsafe extern "C" fn tbasis_generate_corners(
 ) -> tbasis_status {
     boundary(|| {
         if mesh.is_null() {
-            return Err(Error::NullPointer);
+            return Err(Failure::NULL_POINTER);
         }
         let (views, options_desc, opts) = call_inputs(mesh, options)?;
         let mut out = write_view(tangents, tangents_stride, views.corner_count())?;
         let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
-        let scratch = caller_scratch(options_desc, needed, |footprint| {
-            check_written(&views, &[Some(out.footprint()), Some(footprint)])
-        })?;
-
-        with_report(report, |found| {
-            generate_corners_into(&views, &opts, &mut out, scratch, found)
+        let written = [(Buffer::Tangents, Some(out.footprint()))];
+        let scratch = caller_scratch(options_desc, needed, &views, &written)?;
+        with_report(report, || match scratch {
+            Some(bytes) => generate_corners_with_scratch(&views, &opts, &mut out, bytes),
+            None => generate_corners(&views, &opts, &mut out),
         })
     })
 }
@@ -525,7 +556,7 @@ pub unsafe extern "C" fn tbasis_split_corners(
 ) -> tbasis_status {
     boundary(|| {
         if mesh.is_null() || appended_count.is_null() {
-            return Err(Error::NullPointer);
+            return Err(Failure::NULL_POINTER);
         }
         let views = mesh_views(&ptr::read_unaligned(mesh))?;
         let corners = views.corner_count();
@@ -539,10 +570,21 @@ pub unsafe extern "C" fn tbasis_split_corners(
             size: size_of::<usize>(),
             count: 1,
         };
-        let written = [indices_out.footprint(), sources_out.footprint(), count_out];
-        check_written(&views, &written.map(Some))?;
-        if written.iter().any(|w| w.overlaps(&tangents.footprint())) {
-            return Err(Error::Overlap);
+        let written = [
+            (Buffer::Indices, Some(indices_out.footprint())),
+            (Buffer::Attribute, Some(sources_out.footprint())),
+            (Buffer::Attribute, Some(count_out)),
+        ];
+        check_written(&views, &written)?;
+        if let Some(&(buffer, _)) = written
+            .iter()
+            .find(|w| w.1.is_some_and(|w| w.overlaps(&tangents.footprint())))
+        {
+            return Err(Error::Overlap {
+                written: buffer,
+                other: Buffer::CornerTangents,
+            }
+            .into());
         }
 
         let split = split_corners(&views, &tangents)?;
@@ -584,7 +626,7 @@ pub unsafe extern "C" fn tbasis_copy_split_vertices(
 ) -> tbasis_status {
     boundary(|| {
         if element_size > stride {
-            return Err(Error::InvalidStride);
+            return Err(Error::InvalidStride { stride, element_size }.into());
         }
         let total = vertex_count.checked_add(appended_count).ok_or(Error::SizeOverflow)?;
         let source_view = read_view::<u32>(sources.cast(), size_of::<u32>(), appended_count)?;
@@ -600,7 +642,11 @@ pub unsafe extern "C" fn tbasis_copy_split_vertices(
             count: 1,
         };
         if whole_range.overlaps(&source_view.footprint()) {
-            return Err(Error::Overlap);
+            return Err(Error::Overlap {
+                written: Buffer::Attribute,
+                other: Buffer::Attribute,
+            }
+            .into());
         }
         // `sources` may be unaligned: read through its view into an aligned copy.
         let mut aligned = Vec::new();
@@ -610,7 +656,13 @@ pub unsafe extern "C" fn tbasis_copy_split_vertices(
         aligned.extend((0..appended_count).map(|j| source_view.get(j)));
         // The slice is formed only once it is known to share no byte with `sources`.
         let bytes = core::slice::from_raw_parts_mut(attribute.cast::<u8>(), span);
-        copy_split_vertices(bytes, stride, element_size, vertex_count, &aligned)
+        Ok(copy_split_vertices(
+            bytes,
+            stride,
+            element_size,
+            vertex_count,
+            &aligned,
+        )?)
     })
 }
 
@@ -636,8 +688,9 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
     tangent: *mut f32,
 ) -> tbasis_status {
     boundary(|| {
-        let vertex_count = usize::try_from(vertex_count).map_err(|_| Error::InvalidCount)?;
-        let triangle_count = usize::try_from(triangle_count).map_err(|_| Error::InvalidCount)?;
+        let negative = |_| Failure::Status(TBASIS_ERROR_INVALID_COUNT);
+        let vertex_count = usize::try_from(vertex_count).map_err(negative)?;
+        let triangle_count = usize::try_from(triangle_count).map_err(negative)?;
         let index_count = triangle_count.checked_mul(3).ok_or(Error::SizeOverflow)?;
         let mesh = Mesh {
             positions: read_view(vertex.cast(), 12, vertex_count)?,
@@ -649,7 +702,8 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
             tangents: write_view(tangent.cast(), 16, vertex_count)?,
             bitangents: None,
         };
-        generate_into(&mesh, &Options::legacy(), &mut output, None, &mut Report::default())
+        generate(&mesh, &Options::legacy(), &mut output)?;
+        Ok(())
     })
 }
 
@@ -676,7 +730,7 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 pub unsafe extern "C" fn tbasis_scratch_size(mesh: *const tbasis_mesh, options: *const tbasis_options) -> usize {
     let size = boundary_value(|| {
         if mesh.is_null() {
-            return Err(Error::NullPointer);
+            return Err(Failure::NULL_POINTER);
         }
         let options = options_of((!options.is_null()).then(|| ptr::read_unaligned(options)))?;
         let mesh = ptr::read_unaligned(mesh);
@@ -685,7 +739,7 @@ pub unsafe extern "C" fn tbasis_scratch_size(mesh: *const tbasis_mesh, options: 
         } else {
             mesh.index_count
         };
-        scratch_bytes(&options, mesh.vertex_count, corner_count).ok_or(Error::SizeOverflow)
+        scratch_size_for_counts(&options, mesh.vertex_count, corner_count).ok_or(Failure::Library(Error::SizeOverflow))
     });
     size.unwrap_or(usize::MAX)
 }
@@ -694,10 +748,7 @@ pub unsafe extern "C" fn tbasis_scratch_size(mesh: *const tbasis_mesh, options: 
 /// The pointer stays valid for the life of the program; do not free it.
 #[no_mangle]
 pub extern "C" fn tbasis_status_string(status: tbasis_status) -> *const c_char {
-    let text = match status {
-        TBASIS_OK => "success\0",
-        code => Error::from_code(code).map_or("unknown status\0", Error::message_nul),
-    };
+    let text = message_nul(status).unwrap_or("unknown status\0");
     text.as_ptr().cast()
 }
 
@@ -738,7 +789,7 @@ unsafe fn transform_vertex(
 ) -> tbasis_status {
     boundary(|| {
         if normal.is_null() || tangent.is_null() || direction.is_null() || result.is_null() {
-            return Err(Error::NullPointer);
+            return Err(Failure::NULL_POINTER);
         }
         // Every input is copied before `result` is written, so `result` may alias any of them.
         let value = transform(
@@ -819,32 +870,6 @@ pub unsafe extern "C" fn tbasis_from_tangent_space(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn c_status_values_match_the_rust_errors() {
-        let c_values = [
-            TBASIS_ERROR_NULL_POINTER,
-            TBASIS_ERROR_INVALID_STRIDE,
-            TBASIS_ERROR_INVALID_INDEX_COUNT,
-            TBASIS_ERROR_INDEX_OUT_OF_RANGE,
-            TBASIS_ERROR_INVALID_INDEX_TYPE,
-            TBASIS_ERROR_UNKNOWN_METHOD,
-            TBASIS_ERROR_UNKNOWN_POLICY,
-            TBASIS_ERROR_UNKNOWN_FLAGS,
-            TBASIS_ERROR_SIZE_OVERFLOW,
-            TBASIS_ERROR_OVERLAP,
-            TBASIS_ERROR_DEGENERATE_UV,
-            TBASIS_ERROR_OUT_OF_MEMORY,
-            TBASIS_ERROR_SCRATCH_TOO_SMALL,
-            TBASIS_ERROR_INVALID_THRESHOLD,
-            TBASIS_ERROR_INVALID_COUNT,
-            TBASIS_ERROR_INTERNAL,
-            TBASIS_ERROR_INVALID_FRAME,
-            TBASIS_ERROR_TOO_MANY_VERTICES,
-        ];
-        let rust_values: Vec<u32> = Error::ALL.iter().map(|e| e.code()).collect();
-        assert_eq!(c_values.to_vec(), rust_values);
-    }
 
     #[test]
     fn a_panic_becomes_internal() {

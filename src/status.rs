@@ -1,120 +1,128 @@
-//! Status codes: one fixed value per failure, shared by the Rust API and the C ABI.
+//! The C statuses: one fixed value per failure, and the mapping from the crate's errors.
 #![forbid(unsafe_code)]
 
-use core::fmt;
+use tbasis::ErrorKind;
 
-/// Why a call failed. The discriminants are the C ABI's `TBASIS_ERROR_*` values and never change.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u32)]
-pub enum Error {
-    /// A required pointer is NULL (or a buffer is missing while its count is nonzero).
-    NullPointer = 1,
-    /// A stride is smaller than the element it steps over.
-    InvalidStride = 2,
-    /// `index_count` (or, unindexed, `vertex_count`) is not a multiple of 3.
-    InvalidIndexCount = 3,
-    /// An index is `>= vertex_count`.
-    IndexOutOfRange = 4,
-    /// `index_type` is neither U16 nor U32.
-    InvalidIndexType = 5,
-    /// `method` is not one of the `TBASIS_METHOD_*` values.
-    UnknownMethod = 6,
-    /// `degenerate_policy` is not one of the `TBASIS_DEGENERATE_*` values.
-    UnknownPolicy = 7,
-    /// `flags` has a bit no `TBASIS_FLAG_*` names.
-    UnknownFlags = 8,
-    /// `stride * count` (or the address range it spans) does not fit the address space.
-    SizeOverflow = 9,
-    /// An output buffer shares bytes with an input, with the other output, or with the scratch.
-    Overlap = 10,
-    /// Policy REJECT met a triangle whose UVs (or inputs) are degenerate; see the report.
-    DegenerateUv = 11,
-    /// The library could not allocate its scratch memory.
-    OutOfMemory = 12,
-    /// The caller's scratch is smaller than `tbasis_scratch_size`.
-    ScratchTooSmall = 13,
-    /// `degenerate_threshold` is negative, NaN or infinite.
-    InvalidThreshold = 14,
-    /// A count is negative (the legacy signature takes `long`), or a Rust slice is shorter or
-    /// longer than the count it must hold.
-    InvalidCount = 15,
-    /// A bug in the library was caught at the boundary; nothing was written.
-    Internal = 16,
-    /// A tangent-space transform got a frame that is singular (normal or tangent zero or parallel,
-    /// handedness zero) or not finite, a non-finite direction, or a result that overflows a float.
-    InvalidFrame = 17,
-    /// A seam split would append vertices whose indices do not fit 32 bits.
-    TooManyVertices = 18,
+/// Result of a call: `TBASIS_OK` (0) or one of the `TBASIS_ERROR_*` values, which never change.
+pub type tbasis_status = u32;
+
+/// Success.
+pub const TBASIS_OK: tbasis_status = 0;
+/// A required pointer is NULL: `mesh`, `output`, `output->tangents`, the `tangents` of
+/// `tbasis_generate_corners` when the mesh has corners, or a vertex or index buffer whose count is
+/// nonzero (`texcoords` may be NULL except with policy LEGACY or method MIKKTSPACE).
+pub const TBASIS_ERROR_NULL_POINTER: tbasis_status = 1;
+/// A stride is smaller than its element: 12 bytes for positions and normals, 8 for texcoords,
+/// 16 for tangents, 12 for bitangents.
+pub const TBASIS_ERROR_INVALID_STRIDE: tbasis_status = 2;
+/// `index_count` (or, when `indices` is NULL, `vertex_count`) is not a multiple of 3.
+pub const TBASIS_ERROR_INVALID_INDEX_COUNT: tbasis_status = 3;
+/// An index is not less than `vertex_count`.
+pub const TBASIS_ERROR_INDEX_OUT_OF_RANGE: tbasis_status = 4;
+/// `index_type` is neither `TBASIS_INDEX_U16` nor `TBASIS_INDEX_U32` while `indices` is not NULL.
+pub const TBASIS_ERROR_INVALID_INDEX_TYPE: tbasis_status = 5;
+/// `options->method` is not a `TBASIS_METHOD_*` value.
+pub const TBASIS_ERROR_UNKNOWN_METHOD: tbasis_status = 6;
+/// `options->degenerate_policy` is not a `TBASIS_DEGENERATE_*` value.
+pub const TBASIS_ERROR_UNKNOWN_POLICY: tbasis_status = 7;
+/// `options->flags` has a bit that no `TBASIS_FLAG_*` names.
+pub const TBASIS_ERROR_UNKNOWN_FLAGS: tbasis_status = 8;
+/// `stride * count`, or the address range a buffer spans, overflows.
+pub const TBASIS_ERROR_SIZE_OVERFLOW: tbasis_status = 9;
+/// An output byte is also an input byte, a byte of the other output, or a scratch byte (or the
+/// scratch shares a byte with an input). Interleaving outputs between inputs is fine.
+pub const TBASIS_ERROR_OVERLAP: tbasis_status = 10;
+/// Policy REJECT found a degenerate triangle; `report->first_degenerate_triangle` names it.
+pub const TBASIS_ERROR_DEGENERATE_UV: tbasis_status = 11;
+/// Allocating the scratch failed.
+pub const TBASIS_ERROR_OUT_OF_MEMORY: tbasis_status = 12;
+/// `options->scratch` is not NULL and `options->scratch_size` is below `tbasis_scratch_size`.
+pub const TBASIS_ERROR_SCRATCH_TOO_SMALL: tbasis_status = 13;
+/// `options->degenerate_threshold` is negative, NaN or infinite.
+pub const TBASIS_ERROR_INVALID_THRESHOLD: tbasis_status = 14;
+/// A count is negative (`tbasis_calculate_tangent_array` takes `long`).
+pub const TBASIS_ERROR_INVALID_COUNT: tbasis_status = 15;
+/// A bug in the library was caught at the boundary.
+pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
+/// `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
+/// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result
+/// component overflows float.
+pub const TBASIS_ERROR_INVALID_FRAME: tbasis_status = 17;
+/// `tbasis_split_corners`: the mesh would need more than 2^32 vertices, beyond 32-bit indices.
+pub const TBASIS_ERROR_TOO_MANY_VERTICES: tbasis_status = 18;
+
+/// Why a C call failed: an error of the crate, or one only a C caller can make.
+#[derive(Debug)]
+pub(crate) enum Failure {
+    /// An error the crate returned.
+    Library(tbasis::Error),
+    /// A failure found at the boundary (NULL pointers, unknown values, negative counts, panics).
+    Status(tbasis_status),
 }
 
-impl Error {
-    /// Every error, in the order of its value.
-    pub const ALL: [Error; 18] = [
-        Error::NullPointer,
-        Error::InvalidStride,
-        Error::InvalidIndexCount,
-        Error::IndexOutOfRange,
-        Error::InvalidIndexType,
-        Error::UnknownMethod,
-        Error::UnknownPolicy,
-        Error::UnknownFlags,
-        Error::SizeOverflow,
-        Error::Overlap,
-        Error::DegenerateUv,
-        Error::OutOfMemory,
-        Error::ScratchTooSmall,
-        Error::InvalidThreshold,
-        Error::InvalidCount,
-        Error::Internal,
-        Error::InvalidFrame,
-        Error::TooManyVertices,
-    ];
-
-    /// The C status value.
-    pub const fn code(self) -> u32 {
-        self as u32
+impl From<tbasis::Error> for Failure {
+    fn from(error: tbasis::Error) -> Self {
+        Failure::Library(error)
     }
+}
 
-    /// The error with this C status value, if any.
-    pub fn from_code(code: u32) -> Option<Error> {
-        Error::ALL.iter().copied().find(|e| e.code() == code)
-    }
+impl Failure {
+    pub(crate) const NULL_POINTER: Failure = Failure::Status(TBASIS_ERROR_NULL_POINTER);
 
-    /// A static, NUL-terminated description; the C ABI hands out its pointer.
-    pub const fn message_nul(self) -> &'static str {
+    /// The status a C caller gets.
+    pub(crate) fn status(&self) -> tbasis_status {
         match self {
-            Error::NullPointer => "a required pointer is NULL\0",
-            Error::InvalidStride => "a stride is smaller than its element\0",
-            Error::InvalidIndexCount => "the index count is not a multiple of 3\0",
-            Error::IndexOutOfRange => "an index is not less than vertex_count\0",
-            Error::InvalidIndexType => "index_type is not TBASIS_INDEX_U16 or TBASIS_INDEX_U32\0",
-            Error::UnknownMethod => "unknown method\0",
-            Error::UnknownPolicy => "unknown degenerate policy\0",
-            Error::UnknownFlags => "unknown flag bits\0",
-            Error::SizeOverflow => "a buffer's size overflows the address space\0",
-            Error::Overlap => "an output buffer overlaps an input, the other output or the scratch\0",
-            Error::DegenerateUv => "a triangle has degenerate texture coordinates or non-finite input\0",
-            Error::OutOfMemory => "out of memory\0",
-            Error::ScratchTooSmall => "the scratch buffer is smaller than tbasis_scratch_size\0",
-            Error::InvalidThreshold => "degenerate_threshold is negative or not finite\0",
-            Error::InvalidCount => "a count is negative, or a buffer does not hold the count it must\0",
-            Error::Internal => "internal error\0",
-            Error::InvalidFrame => "the tangent frame is singular, or an input or the result is not finite\0",
-            Error::TooManyVertices => "the split mesh would need vertex indices beyond 32 bits\0",
+            Failure::Status(status) => *status,
+            Failure::Library(error) => status_of(error.kind()),
         }
     }
+}
 
-    /// The description without its terminating NUL.
-    pub fn message(self) -> &'static str {
-        let text = self.message_nul();
-        &text[..text.len() - 1]
+/// The C status of an error of the crate.
+pub(crate) fn status_of(kind: ErrorKind) -> tbasis_status {
+    match kind {
+        // In C, missing texture coordinates are a NULL `texcoords`.
+        ErrorKind::MissingTexcoords => TBASIS_ERROR_NULL_POINTER,
+        ErrorKind::InvalidStride => TBASIS_ERROR_INVALID_STRIDE,
+        ErrorKind::InvalidIndexCount => TBASIS_ERROR_INVALID_INDEX_COUNT,
+        ErrorKind::IndexOutOfRange | ErrorKind::SourceOutOfRange => TBASIS_ERROR_INDEX_OUT_OF_RANGE,
+        ErrorKind::LengthMismatch | ErrorKind::BufferTooShort => TBASIS_ERROR_INVALID_COUNT,
+        ErrorKind::SizeOverflow => TBASIS_ERROR_SIZE_OVERFLOW,
+        ErrorKind::Overlap => TBASIS_ERROR_OVERLAP,
+        ErrorKind::DegenerateUv => TBASIS_ERROR_DEGENERATE_UV,
+        ErrorKind::OutOfMemory => TBASIS_ERROR_OUT_OF_MEMORY,
+        ErrorKind::ScratchTooSmall => TBASIS_ERROR_SCRATCH_TOO_SMALL,
+        ErrorKind::InvalidThreshold => TBASIS_ERROR_INVALID_THRESHOLD,
+        ErrorKind::InvalidFrame => TBASIS_ERROR_INVALID_FRAME,
+        ErrorKind::TooManyVertices => TBASIS_ERROR_TOO_MANY_VERTICES,
+        _ => TBASIS_ERROR_INTERNAL,
     }
 }
 
-impl fmt::Display for Error {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.message())
-    }
+/// A static, NUL-terminated description of a status; `None` for a value no status has.
+pub(crate) fn message_nul(status: tbasis_status) -> Option<&'static str> {
+    Some(match status {
+        TBASIS_OK => "success\0",
+        TBASIS_ERROR_NULL_POINTER => {
+            "a required pointer is NULL, or texcoords is NULL where the method or policy needs them\0"
+        }
+        TBASIS_ERROR_INVALID_STRIDE => "a stride is smaller than its element\0",
+        TBASIS_ERROR_INVALID_INDEX_COUNT => "the index count is not a multiple of 3\0",
+        TBASIS_ERROR_INDEX_OUT_OF_RANGE => "an index is not less than vertex_count\0",
+        TBASIS_ERROR_INVALID_INDEX_TYPE => "index_type is not TBASIS_INDEX_U16 or TBASIS_INDEX_U32\0",
+        TBASIS_ERROR_UNKNOWN_METHOD => "unknown method\0",
+        TBASIS_ERROR_UNKNOWN_POLICY => "unknown degenerate policy\0",
+        TBASIS_ERROR_UNKNOWN_FLAGS => "unknown flag bits\0",
+        TBASIS_ERROR_SIZE_OVERFLOW => "a buffer's size overflows the address space\0",
+        TBASIS_ERROR_OVERLAP => "an output buffer overlaps an input, the other output or the scratch\0",
+        TBASIS_ERROR_DEGENERATE_UV => "a triangle has degenerate texture coordinates or non-finite input\0",
+        TBASIS_ERROR_OUT_OF_MEMORY => "out of memory\0",
+        TBASIS_ERROR_SCRATCH_TOO_SMALL => "the scratch buffer is smaller than tbasis_scratch_size\0",
+        TBASIS_ERROR_INVALID_THRESHOLD => "degenerate_threshold is negative or not finite\0",
+        TBASIS_ERROR_INVALID_COUNT => "a count is negative, or a buffer does not hold the count it must\0",
+        TBASIS_ERROR_INTERNAL => "internal error\0",
+        TBASIS_ERROR_INVALID_FRAME => "the tangent frame is singular, or an input or the result is not finite\0",
+        TBASIS_ERROR_TOO_MANY_VERTICES => "the split mesh would need vertex indices beyond 32 bits\0",
+        _ => return None,
+    })
 }
-
-impl std::error::Error for Error {}

@@ -72,11 +72,7 @@ fn run(scene: &Scene, method: Method, policy: DegeneratePolicy) -> Vec<[f32; 4]>
         texcoords: Some(Strided::from_slice(&scene.texcoords)),
         indices: Indices::U32(Strided::from_slice(&scene.indices)),
     };
-    let options = Options {
-        method,
-        degenerate_policy: policy,
-        ..Options::default()
-    };
+    let options = Options::default().with_method(method).with_policy(policy);
     let mut tangents = vec![[0.0f32; 4]; scene.vertex_count()];
     let mut output = Output {
         tangents: StridedMut::from_slice(&mut tangents),

@@ -115,6 +115,57 @@ fn run_harness(mut command: Command, dir: &Path, max_case_vertices: Option<u64>)
     output
 }
 
+/// Builds the library with the test-only feature `fault-injection` into its own target dir (the
+/// ordinary build of the other tests stays as it is), and links `c_tests/faults/internal.c` to it.
+fn build_fault_program(dir: &Path) -> PathBuf {
+    let target = common::artifacts::profile_dir()
+        .parent()
+        .unwrap()
+        .join("fault-injection");
+    let mut cargo = Command::new(env!("CARGO"));
+    cargo.args(["build", "--lib", "--features", "fault-injection", "--manifest-path"]);
+    cargo
+        .arg(Path::new(CRATE_DIR).join("Cargo.toml"))
+        .arg("--target-dir")
+        .arg(&target);
+    run_ok(cargo, "building the library with fault-injection");
+    let lib = target.join("debug");
+    let exe = dir.join("internal");
+    let mut command = compiler(false, dir);
+    command.arg(Path::new(CRATE_DIR).join("c_tests/faults/internal.c"));
+    command
+        .arg("-I")
+        .arg(Path::new(CRATE_DIR).join("include"))
+        .args(C_FLAGS);
+    command
+        .arg("-L")
+        .arg(&lib)
+        .arg("-ltbasis")
+        .arg(format!("-Wl,-rpath,{}", lib.display()));
+    command.arg("-o").arg(&exe);
+    run_ok(command, "compiling c_tests/faults/internal.c");
+    exe
+}
+
+/// `TBASIS_ERROR_INTERNAL`, the one status no input can cause, comes out of every entry point
+/// when the library panics inside it, and nothing is written; the same calls succeed without the
+/// injected panic. (The harness reaches and names every other status.)
+#[test]
+fn every_entry_point_turns_a_panic_into_internal() {
+    let dir = work_dir("faults");
+    let exe = build_fault_program(&dir);
+    // Cargo's LD_LIBRARY_PATH would load the ordinary build before the program's rpath does.
+    let mut clean = Command::new(&exe);
+    clean.env_remove("LD_LIBRARY_PATH");
+    let clean = run_ok(clean, "the calls without a fault");
+    assert_eq!(String::from_utf8_lossy(&clean.stdout).trim(), "ok 8");
+    let mut faulty = Command::new(&exe);
+    faulty.env_remove("LD_LIBRARY_PATH");
+    faulty.env("TBASIS_INJECT_PANIC", "1").env("RUST_BACKTRACE", "0");
+    let output = run_ok(faulty, "the calls with an injected panic");
+    assert_eq!(String::from_utf8_lossy(&output.stdout).trim(), "internal 8");
+}
+
 #[test]
 fn c_harness_passes() {
     let dir = work_dir("plain");

@@ -8,11 +8,11 @@ mod common;
 
 use common::cases::{all_cases, collapsed_band, mirror_fold, Case};
 use common::invariants::check_frame;
-use common::run::UNTOUCHED;
+use common::run::{generate_corners_into, UNTOUCHED};
 use common::scenes::{angle_deg, build, Scene, SceneSpec};
 use tbasis::{
-    generate_corners_into, scratch_size, scratch_size_for, DegeneratePolicy as Policy, Error, Indices, Method, Options,
-    Report, Strided, StridedMut,
+    scratch_size, scratch_size_for, DegeneratePolicy as Policy, ErrorKind, Indices, Method, Options, Report, Strided,
+    StridedMut,
 };
 
 const METHODS: [Method; 4] = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform];
@@ -20,7 +20,7 @@ const POLICIES: [Policy; 4] = [Policy::Legacy, Policy::Skip, Policy::Inherit, Po
 
 /// One `generate_corners_into` call's outcome, its output prefilled with [`UNTOUCHED`].
 struct CornerRun {
-    result: Result<(), Error>,
+    result: Result<(), ErrorKind>,
     report: Report,
     corners: Vec<[f32; 4]>,
 }
@@ -58,11 +58,7 @@ fn run_corners(case: &Case, options: &Options, scratch: Option<&mut [u8]>) -> Co
 }
 
 fn options(method: Method, policy: Policy) -> Options {
-    Options {
-        method,
-        degenerate_policy: policy,
-        ..Options::default()
-    }
+    Options::default().with_method(method).with_policy(policy)
 }
 
 fn bits(frame: [f32; 4]) -> [u32; 4] {
@@ -152,7 +148,7 @@ fn compare_with_vertices(case: &Case, options: &Options, two_sided: &[bool]) -> 
     let vertices = case.run(options);
     let corners = run_corners(case, options, None);
     assert_eq!(corners.result, vertices.result, "{what}: status");
-    if vertices.result.is_ok() || vertices.result == Err(Error::DegenerateUv) {
+    if vertices.result.is_ok() || vertices.result == Err(ErrorKind::DegenerateUv) {
         assert_eq!(corners.report, vertices.report, "{what}: report");
     }
     if corners.result.is_err() {
@@ -252,11 +248,11 @@ fn threads_change_no_bit() {
     for method in METHODS {
         for policy in POLICIES {
             let base = options(method, policy);
-            let one = run_corners(&case, &Options { threads: 1, ..base }, None);
+            let one = run_corners(&case, &base.with_threads(1), None);
             assert_eq!(one.result, Ok(()), "{method:?} {policy:?}");
             for threads in [2, 8] {
                 let what = format!("{method:?} {policy:?} threads={threads}");
-                let run = run_corners(&case, &Options { threads, ..base }, None);
+                let run = run_corners(&case, &base.with_threads(threads), None);
                 assert_eq!(run.result, one.result, "{what}");
                 assert_eq!(run.report, one.report, "{what}: report");
                 assert!(
@@ -301,7 +297,7 @@ fn caller_scratch_at_any_alignment_gives_the_same_bits() {
                 }
                 let worst = (0..4).find(|&o| (buffer[o..].as_ptr() as usize) % 4 == 1).unwrap();
                 let short = run_corners(&case, &options, Some(&mut buffer[worst..worst + needed - 1]));
-                assert_eq!(short.result, Err(Error::ScratchTooSmall), "{what}: one byte short");
+                assert_eq!(short.result, Err(ErrorKind::ScratchTooSmall), "{what}: one byte short");
                 assert!(short.untouched(), "{what}: one byte short wrote output");
             }
         }
@@ -322,31 +318,36 @@ fn errors_write_nothing() {
         texcoords: None,
         ..case.clone()
     };
-    let bad_threshold = Options {
-        degenerate_threshold: f32::NAN,
-        ..Options::default()
-    };
+    let bad_threshold = Options::default().with_degenerate_threshold(f32::NAN);
     let calls = [
         (
             &out_of_range,
             options(Method::Angle, Policy::Inherit),
-            Error::IndexOutOfRange,
+            ErrorKind::IndexOutOfRange,
         ),
         (
             &out_of_range,
             options(Method::Lengyel, Policy::Legacy),
-            Error::IndexOutOfRange,
+            ErrorKind::IndexOutOfRange,
         ),
-        (&short_indices, Options::default(), Error::InvalidIndexCount),
-        (&collapsed, options(Method::Angle, Policy::Reject), Error::DegenerateUv),
-        (&bare, options(Method::Lengyel, Policy::Legacy), Error::NullPointer),
-        (&case, bad_threshold, Error::InvalidThreshold),
+        (&short_indices, Options::default(), ErrorKind::InvalidIndexCount),
+        (
+            &collapsed,
+            options(Method::Angle, Policy::Reject),
+            ErrorKind::DegenerateUv,
+        ),
+        (
+            &bare,
+            options(Method::Lengyel, Policy::Legacy),
+            ErrorKind::MissingTexcoords,
+        ),
+        (&case, bad_threshold, ErrorKind::InvalidThreshold),
     ];
     for (case, options, error) in calls {
         let run = run_corners(case, &options, None);
         assert_eq!(run.result, Err(error), "{}", case.name);
         assert!(run.untouched(), "{:?} wrote output", error);
-        if error == Error::DegenerateUv {
+        if error == ErrorKind::DegenerateUv {
             assert_eq!(run.report.degenerate_triangles, 1);
             assert_eq!(run.report.first_degenerate_triangle, 0);
         }
@@ -363,7 +364,7 @@ fn errors_write_nothing() {
             None,
             &mut Report::default(),
         );
-        assert_eq!(result, Err(Error::InvalidCount), "{count} corners");
+        assert_eq!(result, Err(ErrorKind::LengthMismatch), "{count} corners");
         assert!(corners.iter().flatten().all(|&x| x == UNTOUCHED));
     }
 
@@ -389,7 +390,7 @@ fn errors_write_nothing() {
         indices: Indices::U32(Strided::from_slice(case.indices.as_ref().unwrap())),
     };
     let result = generate_corners_into(&mesh, &Options::default(), &mut corners, None, &mut Report::default());
-    assert_eq!(result, Err(Error::Overlap));
+    assert_eq!(result, Err(ErrorKind::Overlap));
     let after: Vec<u32> = shared.iter().map(|x| x.to_bits()).collect();
     assert!(after == before, "an overlapping call wrote");
 }

@@ -17,7 +17,7 @@ use common::invariants::check_invariants;
 use common::load::{self, MeshFile, Primitive};
 use common::needs;
 use common::run::{run_mesh, Run};
-use tbasis::{DegeneratePolicy, Error, Report};
+use tbasis::{DegeneratePolicy, ErrorKind, Report};
 
 /// One thing found wrong.
 #[derive(Clone, Debug)]
@@ -117,7 +117,7 @@ fn check_primitive(primitive: &Primitive) -> Result<Vec<String>, String> {
                 "REJECT on a clean mesh differs from SKIP".to_string(),
             );
         }
-        Err(Error::DegenerateUv) => {
+        Err(ErrorKind::DegenerateUv) => {
             expect(
                 degenerate > 0,
                 "REJECT refused a mesh without degenerate triangles".to_string(),
@@ -130,7 +130,7 @@ fn check_primitive(primitive: &Primitive) -> Result<Vec<String>, String> {
     // LEGACY only has to come back (no panic, which `run` caught); it needs texture coordinates.
     let legacy_ok = match (&legacy.result, &primitive.texcoords) {
         (Ok(()), Some(_)) => true,
-        (Err(Error::NullPointer), None) => legacy.untouched(),
+        (Err(ErrorKind::MissingTexcoords), None) => legacy.untouched(),
         _ => false,
     };
     expect(legacy_ok, format!("LEGACY returned {:?}", legacy.result));

@@ -93,10 +93,7 @@ fn gltf_tangents(
         indices: Indices::U32(Strided::from_slice(indices)),
     };
     // glTF's TEXCOORD_0 has V pointing down.
-    let options = Options {
-        flip_v: true,
-        ..Options::default()
-    };
+    let options = Options::default().with_flip_v(true);
     let mut tangents = vec![[0.0f32; 4]; positions.len()];
     let mut output = Output {
         tangents: StridedMut::from_slice(&mut tangents),
@@ -109,11 +106,7 @@ fn gltf_tangents(
 /// The primitive's tangents with `flip_v` set as given (default policy).
 fn tangents(primitive: &Primitive, method: Method, flip_v: bool) -> Vec<[f32; 4]> {
     // Set explicitly: `Primitive::options` would choose flip_v from the file format.
-    let options = Options {
-        method,
-        flip_v,
-        ..Options::default()
-    };
+    let options = Options::default().with_method(method).with_flip_v(flip_v);
     let mut tangents = vec![[0.0f32; 4]; primitive.vertex_count()];
     let mut output = Output {
         tangents: StridedMut::from_slice(&mut tangents),

@@ -37,15 +37,12 @@ use std::time::Instant;
 use common::load::{self, ManifestRow, Primitive};
 use common::mikktspace_reference::reference_corners;
 use common::mikktspace_scenes::{self, IndexData, StressMesh};
-use common::run::UNTOUCHED;
+use common::run::{generate_corners_into, generate_into, UNTOUCHED};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::select;
 use proptest::test_runner::Config;
-use tbasis::{
-    generate_corners, generate_corners_into, generate_into, scratch_size_for, Indices, Mesh, Options, Output, Report,
-    Strided, StridedMut,
-};
+use tbasis::{generate_corners, scratch_size_for, Indices, Mesh, Options, Output, Report, Strided, StridedMut};
 
 /// Corpus meshes above this many vertices are skipped in debug builds (the reference alone would
 /// take 30 s on FlightHelmet.cc1).
@@ -172,11 +169,7 @@ impl<'a> Subject<'a> {
 
 /// `Options::mikktspace()` with `flip_v` and `threads`.
 fn options(flip_v: bool, threads: u32) -> Options {
-    Options {
-        flip_v,
-        threads,
-        ..Options::mikktspace()
-    }
+    Options::mikktspace().with_flip_v(flip_v).with_threads(threads)
 }
 
 /// Our per-corner frames and report.

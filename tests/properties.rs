@@ -13,13 +13,14 @@
 mod common;
 
 use common::invariants::{check_invariants, unit_normal};
+use common::run::generate_into;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::Index;
 use proptest::test_runner::Config;
 use tbasis::{
-    generate_into, scratch_size, scratch_size_for, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output,
-    Report, Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
+    scratch_size, scratch_size_for, DegeneratePolicy, ErrorKind, Indices, Mesh, Method, Options, Output, Report,
+    Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
 };
 
 /// Values that break naive arithmetic: non-finite, signed zeros, subnormals, extremes.
@@ -278,12 +279,13 @@ fn options() -> impl Strategy<Value = Options> {
         1 => Just(0.95f32),
         1 => prop::sample::select(vec![-1e-6f32, f32::NAN, f32::INFINITY, f32::NEG_INFINITY]),
     ];
-    (method, policy, threshold, any::<bool>()).prop_map(|(method, policy, threshold, flip_v)| Options {
-        method,
-        degenerate_policy: policy,
-        flip_v,
-        degenerate_threshold: threshold,
-        threads: 0,
+    (method, policy, threshold, any::<bool>()).prop_map(|(method, policy, threshold, flip_v)| {
+        Options::default()
+            .with_method(method)
+            .with_policy(policy)
+            .with_flip_v(flip_v)
+            .with_degenerate_threshold(threshold)
+            .with_threads(0)
     })
 }
 
@@ -433,7 +435,7 @@ fn index_view<'a>(mesh: &MeshData, bytes: &'a [u8], placement: IndexPlacement, s
 
 /// What one call did, read back from the caller's memory.
 struct Outcome {
-    result: Result<(), Error>,
+    result: Result<(), ErrorKind>,
     report: Report,
     /// Every buffer before and after the call, with a mask of the bytes the call may write.
     buffers: Vec<(Vec<u8>, Vec<u8>, Vec<bool>)>,
@@ -461,7 +463,7 @@ fn unwritten_report() -> Report {
 }
 
 /// Runs the call with caller scratch as the scenario says.
-fn call(s: &Scenario, mesh: &Mesh, output: &mut Output, report: &mut Report) -> Result<(), Error> {
+fn call(s: &Scenario, mesh: &Mesh, output: &mut Output, report: &mut Report) -> Result<(), ErrorKind> {
     match s.scratch {
         None => generate_into(mesh, &s.options, output, None, report),
         Some((offset, short)) => {
@@ -661,7 +663,7 @@ fn run_interleaved(
 
 /// A call on packed arrays and what it wrote.
 struct Packed {
-    result: Result<(), Error>,
+    result: Result<(), ErrorKind>,
     tangents: Vec<[f32; 4]>,
     bitangents: Vec<[f32; 3]>,
 }
@@ -697,30 +699,30 @@ fn run_packed(s: &Scenario) -> Packed {
 
 /// The error the input's construction calls for, in the order the library checks, or `None`
 /// when the call must succeed (or, under REJECT, may refuse degenerate triangles).
-fn predicted_error(s: &Scenario, outcome: &Outcome) -> Option<Error> {
+fn predicted_error(s: &Scenario, outcome: &Outcome) -> Option<ErrorKind> {
     let m = &s.mesh;
     let n = m.vertex_count();
     let threshold = s.options.degenerate_threshold;
     if !threshold.is_finite() || threshold < 0.0 {
-        return Some(Error::InvalidThreshold);
+        return Some(ErrorKind::InvalidThreshold);
     }
     if outcome.miscounted {
-        return Some(Error::InvalidCount);
+        return Some(ErrorKind::LengthMismatch);
     }
     if m.texcoords.is_none() && s.options.degenerate_policy == DegeneratePolicy::Legacy {
-        return Some(Error::NullPointer);
+        return Some(ErrorKind::MissingTexcoords);
     }
     if m.index_count() % 3 != 0 {
-        return Some(Error::InvalidIndexCount);
+        return Some(ErrorKind::InvalidIndexCount);
     }
     if outcome.overlapping {
-        return Some(Error::Overlap);
+        return Some(ErrorKind::Overlap);
     }
     if s.scratch.is_some_and(|(_, short)| short) && n > 0 {
-        return Some(Error::ScratchTooSmall);
+        return Some(ErrorKind::ScratchTooSmall);
     }
     if m.corners().iter().any(|&v| v >= n) {
-        return Some(Error::IndexOutOfRange);
+        return Some(ErrorKind::IndexOutOfRange);
     }
     None
 }
@@ -825,7 +827,7 @@ fn check(s: &Scenario) -> Result<(), TestCaseError> {
     match (predicted, outcome.result) {
         (Some(e), result) => prop_assert_eq!(result, Err(e)),
         (None, Ok(())) => {}
-        (None, Err(Error::DegenerateUv)) if policy == DegeneratePolicy::Reject => {}
+        (None, Err(ErrorKind::DegenerateUv)) if policy == DegeneratePolicy::Reject => {}
         (None, Err(e)) => prop_assert!(false, "unexpected {:?}", e),
     }
 
@@ -833,7 +835,7 @@ fn check(s: &Scenario) -> Result<(), TestCaseError> {
         for (k, (before, after, _)) in outcome.buffers.iter().enumerate() {
             prop_assert!(before == after, "buffer {} changed on {:?}", k, error);
         }
-        if error == Error::DegenerateUv {
+        if error == ErrorKind::DegenerateUv {
             check_report(s, &outcome.report, true)?;
         } else {
             prop_assert_eq!(outcome.report, unwritten_report(), "report written on {:?}", error);
@@ -931,7 +933,7 @@ proptest! {
     fn valid_meshes_always_succeed_with_sound_frames(s in valid_scenario()) {
         let policy = s.options.degenerate_policy;
         let result = run_packed(&s).result;
-        prop_assert!(result.is_ok() || (policy == DegeneratePolicy::Reject && result == Err(Error::DegenerateUv)));
+        prop_assert!(result.is_ok() || (policy == DegeneratePolicy::Reject && result == Err(ErrorKind::DegenerateUv)));
         check(&s)?;
     }
 }
@@ -975,11 +977,7 @@ proptest! {
             tangents: StridedMut::from_slice(&mut tangents),
             bitangents: None,
         };
-        let options = Options {
-            method,
-            degenerate_policy: policy,
-            ..Options::default()
-        };
+        let options = Options::default().with_method(method).with_policy(policy);
         let mut report = Report::default();
         prop_assert_eq!(generate_into(&mesh, &options, &mut output, None, &mut report), Ok(()));
         if let Err(e) = check_invariants(&normals, &tangents, None) {

@@ -131,7 +131,9 @@ fn readme_snippets_come_from_tested_files() {
         "bindings/python/examples/interleaved.py",
         "tests/gltf_convention.rs",
         "tests/transform.rs",
-        "src/generate.rs",
+        "crates/tbasis/src/lib.rs",
+        "crates/tbasis/src/generate.rs",
+        "c_tests/harness.c",
     ] {
         assert!(sources.contains(&expected), "no README snippet from {expected}");
     }
@@ -141,6 +143,35 @@ fn readme_snippets_come_from_tested_files() {
         if let Some(line) = first_missing_line(block, &source) {
             panic!("README snippet line not in {path} (in order): {line}");
         }
+    }
+}
+
+/// Languages whose blocks are code a user would paste; `sh` and `text` blocks are commands and
+/// output, checked where an example runs them.
+const CODE_LANGUAGES: [&str; 6] = ["rust", "c", "cpp", "python", "cmake", "toml"];
+
+#[test]
+fn every_code_block_is_a_tested_snippet_or_example() {
+    let readme = std::fs::read_to_string(Path::new(CRATE_DIR).join("README.md")).expect("README.md");
+    let lines: Vec<&str> = readme.lines().collect();
+    let mut inside = false;
+    for (k, line) in lines.iter().enumerate() {
+        if !line.starts_with("```") {
+            continue;
+        }
+        if inside {
+            inside = false;
+            continue;
+        }
+        inside = true;
+        let language = line.trim_start_matches('`');
+        let marked =
+            k > 0 && (marker(lines[k - 1], MARKER).is_some() || marker(lines[k - 1], EXAMPLE_MARKER).is_some());
+        assert!(
+            !CODE_LANGUAGES.contains(&language) || marked,
+            "README line {}: a {language} block without a snippet or example marker",
+            k + 1
+        );
     }
 }
 

@@ -10,7 +10,8 @@ use common::load;
 use proptest::prelude::*;
 use std::collections::HashMap;
 use tbasis::{
-    copy_split_vertices, generate_corners, split_corners, Error, Indices, Mesh, Options, SeamSplit, Strided, StridedMut,
+    copy_split_vertices, generate_corners, split_corners, Buffer, Error, ErrorKind, Indices, Mesh, Options, SeamSplit,
+    Strided, StridedMut,
 };
 
 /// Checks `split` of a mesh with `vertex_count` vertices whose corner `c` is vertex
@@ -136,27 +137,51 @@ fn bad_input_is_refused() {
     let four = [0u32, 1, 2, 0];
     let split =
         |indices: Option<&[u32]>, t: &[[f32; 4]]| split_corners(&mesh(&positions, indices), &Strided::from_slice(t));
-    assert_eq!(split(None, &short), Err(Error::InvalidCount));
-    assert_eq!(split(Some(&out_of_range), &tangents), Err(Error::IndexOutOfRange));
-    assert_eq!(split(Some(&four), &[PALETTE[0]; 4]), Err(Error::InvalidIndexCount));
+    assert_eq!(
+        split(None, &short).unwrap_err(),
+        Error::LengthMismatch {
+            buffer: Buffer::CornerTangents,
+            len: 2,
+            expected: 3
+        }
+    );
+    assert_eq!(
+        split(Some(&out_of_range), &tangents).unwrap_err(),
+        Error::IndexOutOfRange {
+            triangle: 0,
+            index: 3,
+            vertex_count: 3
+        }
+    );
+    assert_eq!(
+        split(Some(&four), &[PALETTE[0]; 4]).unwrap_err(),
+        Error::InvalidIndexCount { count: 4 }
+    );
     assert_eq!(split(None, &tangents).map(|s| s.sources.len()), Ok(0));
 
     let mut bytes = [7u8; 16];
     assert_eq!(
         copy_split_vertices(&mut bytes, 4, 8, 2, &[0]),
-        Err(Error::InvalidStride)
+        Err(Error::InvalidStride {
+            stride: 4,
+            element_size: 8
+        })
     );
     assert_eq!(
         copy_split_vertices(&mut bytes, 4, 4, 2, &[2]),
-        Err(Error::IndexOutOfRange)
+        Err(Error::SourceOutOfRange {
+            position: 0,
+            source: 2,
+            vertex_count: 2
+        })
     );
     assert_eq!(
         copy_split_vertices(&mut bytes, 4, 4, 2, &[0, 1, 0]),
-        Err(Error::InvalidCount)
+        Err(Error::BufferTooShort { len: 16, needed: 20 })
     );
     assert_eq!(
-        copy_split_vertices(&mut bytes, usize::MAX, 4, 2, &[0]),
-        Err(Error::SizeOverflow)
+        copy_split_vertices(&mut bytes, usize::MAX, 4, 2, &[0]).map_err(|e| e.kind()),
+        Err(ErrorKind::SizeOverflow)
     );
     assert_eq!(bytes, [7u8; 16], "an error wrote");
 }
@@ -184,10 +209,7 @@ fn every_corpus_mesh_splits_its_mikktspace_seams() {
                 continue;
             }
             let what = format!("{} primitive {k}", row.path);
-            let options = Options {
-                flip_v: primitive.v_down,
-                ..Options::mikktspace()
-            };
+            let options = Options::mikktspace().with_flip_v(primitive.v_down);
             let mesh = primitive.mesh();
             let mut tangents = vec![[0.0f32; 4]; mesh.corner_count()];
             let report = generate_corners(&mesh, &options, &mut StridedMut::from_slice(&mut tangents))

@@ -24,9 +24,9 @@ fn bits<const N: usize>(values: &[[f32; N]]) -> Vec<u32> {
 }
 
 fn assert_same_for_every_thread_count(case: &Case, options: Options, thread_counts: &[u32]) {
-    let one = case.run(&Options { threads: 1, ..options });
+    let one = case.run(&options.with_threads(1));
     for &threads in thread_counts {
-        let run = case.run(&Options { threads, ..options });
+        let run = case.run(&options.with_threads(threads));
         let what = format!(
             "{} {:?} {:?} threads={threads}",
             case.name, options.method, options.degenerate_policy
@@ -58,11 +58,7 @@ fn every_method_and_policy_is_bit_identical_across_thread_counts() {
         );
         for method in methods {
             for policy in policies {
-                let options = Options {
-                    method,
-                    degenerate_policy: policy,
-                    ..Options::default()
-                };
+                let options = Options::default().with_method(method).with_policy(policy);
                 assert_same_for_every_thread_count(case, options, &[4]);
             }
         }
@@ -74,10 +70,7 @@ fn every_method_and_policy_is_bit_identical_across_thread_counts() {
 fn the_quantized_sphere_exercises_degenerate_triangles_on_several_workers() {
     // Without degenerate triangles split across workers, the test above would prove less.
     let case = quantized_uv_sphere();
-    let run = case.run(&Options {
-        threads: 4,
-        ..Options::default()
-    });
+    let run = case.run(&Options::default().with_threads(4));
     let report = run.outcome().expect("INHERIT accepts the mesh");
     assert!(report.degenerate_triangles > 1000 && report.inherited_vertices + report.fallback_vertices > 0);
 }

@@ -53,11 +53,7 @@ impl Case {
 
     /// The report a policy produces on this case (also on a REJECT refusal).
     pub fn expected_report(&self, policy: DegeneratePolicy) -> Report {
-        self.run(&Options {
-            degenerate_policy: policy,
-            ..Options::default()
-        })
-        .report
+        self.run(&Options::default().with_policy(policy)).report
     }
 }
 

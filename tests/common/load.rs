@@ -6,7 +6,7 @@
 //! tangents. Texture coordinates are kept exactly as the file stores them: glTF with V pointing
 //! down, OBJ with V pointing up (see [`Primitive::v_down`]).
 //!
-//! Used by `tests/corpus.rs` (through `tests/common/mod.rs`) and by `examples/corpus_table.rs`
+//! Used by `tests/corpus.rs` (through `tests/common/mod.rs`) and by `crates/compare/examples/corpus_table.rs`
 //! (through `#[path]`), so it depends on nothing but the standard library, `gltf` and `tobj`.
 
 use std::fs;
@@ -68,11 +68,7 @@ impl Primitive {
 
     /// Options for `policy`, with V pointing down for glTF.
     pub fn options(&self, policy: tbasis::DegeneratePolicy) -> tbasis::Options {
-        tbasis::Options {
-            degenerate_policy: policy,
-            flip_v: self.v_down,
-            ..tbasis::Options::default()
-        }
+        tbasis::Options::default().with_policy(policy).with_flip_v(self.v_down)
     }
 }
 
@@ -93,10 +89,16 @@ impl MeshFile {
     }
 }
 
-/// The corpus folder, `../shared/meshes/` next to this crate, or `None` when it (or its manifest)
-/// is absent: the corpus is not part of the repository, so callers skip rather than fail.
+/// The corpus folder, `../shared/meshes/` next to the repository, or `None` when it (or its
+/// manifest) is absent: the corpus is not part of the repository, so callers skip rather than fail.
 pub fn corpus_dir() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // Whichever crate of the workspace compiles this file: the folder at or above it that holds it.
+    let repo = manifest
+        .ancestors()
+        .find(|dir| dir.join("tests/common/load.rs").is_file())
+        .unwrap_or(manifest);
+    let dir = repo.join("../shared/meshes");
     dir.join("MANIFEST.tsv").is_file().then_some(dir)
 }
 

@@ -5,7 +5,7 @@
 //! buffer (or, unindexed, triangle `t` is vertices `3t..3t+3`), every face a triangle, and
 //! `setTSpaceBasic(face t, vert k)` lands in corner `3t + k` as `[x, y, z, sign]`.
 //!
-//! Used by `tests/mikktspace.rs` (through `tests/common/mod.rs`) and by `examples/chart.rs`
+//! Used by `tests/mikktspace.rs` (through `tests/common/mod.rs`) and by `crates/compare/examples/chart.rs`
 //! (through `#[path]`), so it depends on nothing but the standard library and `mikktspace-sys`.
 
 /// A triangle mesh as mikktspace.c's callbacks read it.

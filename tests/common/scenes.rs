@@ -13,7 +13,7 @@
 //! side with identical position and normal, as exported assets have them; each copy's truth is
 //! that of its own side.
 //!
-//! Shared by `tests/accuracy.rs` (through `tests/common/mod.rs`) and `examples/chart.rs` (through
+//! Shared by `tests/accuracy.rs` (through `tests/common/mod.rs`) and `crates/compare/examples/chart.rs` (through
 //! `#[path]`), so there is one metric for both; it depends on the standard library only.
 
 use std::f64::consts::{PI, TAU};

@@ -4,7 +4,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tbasis::{Error, Report};
+use tbasis::{Error, ErrorKind, Indices, Report};
 
 create_exception!(
     tbasis._native,
@@ -14,6 +14,48 @@ create_exception!(
      status value, message the library's description and details a dict naming what failed \
      (keys: report, position, value, row)."
 );
+
+/// The C status values (`TBASIS_ERROR_*` of include/tbasis.h) the package maps to its exception
+/// classes. They never change; the crate's errors have no numbers, so the binding keeps them.
+pub mod status {
+    pub const MISSING_TEXCOORDS: u32 = 1; // TBASIS_ERROR_NULL_POINTER: texcoords NULL
+    pub const INVALID_STRIDE: u32 = 2;
+    pub const INVALID_INDEX_COUNT: u32 = 3;
+    pub const INDEX_OUT_OF_RANGE: u32 = 4;
+    pub const UNKNOWN_METHOD: u32 = 6;
+    pub const UNKNOWN_POLICY: u32 = 7;
+    pub const SIZE_OVERFLOW: u32 = 9;
+    pub const OVERLAP: u32 = 10;
+    pub const DEGENERATE_UV: u32 = 11;
+    pub const OUT_OF_MEMORY: u32 = 12;
+    pub const SCRATCH_TOO_SMALL: u32 = 13;
+    pub const INVALID_THRESHOLD: u32 = 14;
+    pub const INVALID_COUNT: u32 = 15;
+    pub const INTERNAL: u32 = 16;
+    pub const INVALID_FRAME: u32 = 17;
+    pub const TOO_MANY_VERTICES: u32 = 18;
+}
+
+/// The C status of an error of the crate, as the C library returns it (src/status.rs).
+pub fn status_of(kind: ErrorKind) -> u32 {
+    match kind {
+        ErrorKind::MissingTexcoords => status::MISSING_TEXCOORDS,
+        ErrorKind::InvalidStride => status::INVALID_STRIDE,
+        ErrorKind::InvalidIndexCount => status::INVALID_INDEX_COUNT,
+        ErrorKind::IndexOutOfRange | ErrorKind::SourceOutOfRange => status::INDEX_OUT_OF_RANGE,
+        ErrorKind::LengthMismatch | ErrorKind::BufferTooShort => status::INVALID_COUNT,
+        ErrorKind::SizeOverflow => status::SIZE_OVERFLOW,
+        ErrorKind::Overlap => status::OVERLAP,
+        ErrorKind::DegenerateUv => status::DEGENERATE_UV,
+        ErrorKind::OutOfMemory => status::OUT_OF_MEMORY,
+        ErrorKind::ScratchTooSmall => status::SCRATCH_TOO_SMALL,
+        ErrorKind::InvalidThreshold => status::INVALID_THRESHOLD,
+        ErrorKind::InvalidFrame => status::INVALID_FRAME,
+        ErrorKind::TooManyVertices => status::TOO_MANY_VERTICES,
+        // A kind added to the crate after this binding was written.
+        _ => status::INTERNAL,
+    }
+}
 
 /// The report as a tuple in the order of `tbasis_report`'s fields, `first_degenerate_triangle`
 /// `None` when there is none.
@@ -45,8 +87,40 @@ pub struct Details {
     pub row: Option<usize>,
 }
 
+impl Details {
+    /// What `error`, from a call on a mesh with `indices`, tells about its culprit.
+    pub fn of(error: &Error, indices: Indices<'_>) -> Details {
+        match *error {
+            Error::DegenerateUv { ref report, .. } => Details {
+                report: Some(report_tuple(report)),
+                ..Details::default()
+            },
+            Error::IndexOutOfRange { triangle, index, .. } => Details {
+                index: Some((index_position(indices, triangle, index), index)),
+                ..Details::default()
+            },
+            _ => Details::default(),
+        }
+    }
+}
+
+/// Where in the index buffer `triangle`'s out-of-range `index` is. The library names the first
+/// corner out of range, so the corners of its triangle before it are in range and the first
+/// corner holding `index` is the one.
+fn index_position(indices: Indices<'_>, triangle: usize, index: usize) -> usize {
+    let first = 3 * triangle;
+    (first..first + 3)
+        .find(|&corner| indices.corner(corner) == index)
+        .unwrap_or(first)
+}
+
 /// [`LibraryError`] for `error`.
-pub fn library_error(py: Python<'_>, error: Error, details: Details) -> PyErr {
+pub fn library_error(py: Python<'_>, error: &Error, details: Details) -> PyErr {
+    status_error(py, status_of(error.kind()), error.to_string(), details)
+}
+
+/// [`LibraryError`] with the C `status` for a failure the binding finds itself.
+pub fn status_error(py: Python<'_>, status: u32, message: String, details: Details) -> PyErr {
     let dict = PyDict::new(py);
     let filled = (|| -> PyResult<()> {
         if let Some(report) = details.report {
@@ -62,7 +136,7 @@ pub fn library_error(py: Python<'_>, error: Error, details: Details) -> PyErr {
         Ok(())
     })();
     match filled {
-        Ok(()) => LibraryError::new_err((error.code(), error.message(), dict.unbind())),
+        Ok(()) => LibraryError::new_err((status, message, dict.unbind())),
         Err(failure) => failure,
     }
 }

@@ -3,8 +3,8 @@
 use pyo3::prelude::*;
 use tbasis::{DegeneratePolicy, Error, Method, Options, Output, Report, DEFAULT_DEGENERATE_THRESHOLD};
 
-use crate::errors::{library_error, report_tuple, Details, ReportTuple};
-use crate::views::{first_out_of_range, rows, MeshPlaces};
+use crate::errors::{library_error, report_tuple, status, status_error, Details, ReportTuple};
+use crate::views::{rows, MeshPlaces};
 
 /// Tangents (and bitangents) per vertex into `tangents` (`bitangents`), both `(n, 4)` and `(n, 3)`
 /// float32 arrays; returns the report. `method` and `policy` are the C values (0: the default,
@@ -29,24 +29,22 @@ pub fn generate(
     let mesh = MeshPlaces::new(positions, normals, texcoords, indices)?;
     let tangents = rows::<4>("tangents", tangents, true)?;
     let bitangents = bitangents.map(|b| rows::<3>("bitangents", b, true)).transpose()?;
-    let options = options(method, policy, threshold, flip_v, threads).map_err(|e| plain_error(py, e))?;
-    let mut report = Report::default();
+    let options = options(py, method, policy, threshold, flip_v, threads)?;
     let result = py.detach(|| {
         // SAFETY: the arrays are arguments of this call, so they outlive it; the library checks
         // that no output byte is an input byte before it writes. A Python thread that writes the
         // same arrays while the GIL is released races with the library, as it would with numpy.
         let (mesh, mut output) = unsafe {
-            (
-                mesh.mesh(),
-                Output {
-                    tangents: tangents.write(),
-                    bitangents: bitangents.map(|b| b.write()),
-                },
-            )
+            let output = Output::new(tangents.write());
+            let output = match bitangents {
+                Some(bitangents) => output.with_bitangents(bitangents.write()),
+                None => output,
+            };
+            (mesh.mesh(), output)
         };
-        tbasis::generate_into(&mesh, &options, &mut output, None, &mut report)
+        tbasis::generate(&mesh, &options, &mut output)
     });
-    finish(py, result, mesh, &report)
+    finish(py, result, mesh)
 }
 
 /// A tangent per triangle corner into `tangents`, a `(corners, 4)` float32 array; returns the
@@ -69,47 +67,74 @@ pub fn generate_corners(
 ) -> PyResult<ReportTuple> {
     let mesh = MeshPlaces::new(positions, normals, texcoords, indices)?;
     let tangents = rows::<4>("tangents", tangents, true)?;
-    let options = options(method, policy, threshold, flip_v, threads).map_err(|e| plain_error(py, e))?;
-    let mut report = Report::default();
+    let options = options(py, method, policy, threshold, flip_v, threads)?;
     let result = py.detach(|| {
         // SAFETY: as in `generate`.
         let (mesh, mut tangents) = unsafe { (mesh.mesh(), tangents.write()) };
-        tbasis::generate_corners_into(&mesh, &options, &mut tangents, None, &mut report)
+        tbasis::generate_corners(&mesh, &options, &mut tangents)
     });
-    finish(py, result, mesh, &report)
+    finish(py, result, mesh)
+}
+
+/// The method a C value names (`TBASIS_METHOD_*`; 0 is the default).
+fn method_of(code: u32) -> Option<Method> {
+    Some(match code {
+        0 => Method::DEFAULT,
+        1 => Method::Lengyel,
+        2 => Method::Angle,
+        3 => Method::Area,
+        4 => Method::Uniform,
+        5 => Method::Mikktspace,
+        _ => return None,
+    })
+}
+
+/// The policy a C value names (`TBASIS_DEGENERATE_*`; 0 is `method`'s default).
+fn policy_of(code: u32, method: Method) -> Option<DegeneratePolicy> {
+    Some(match code {
+        0 => DegeneratePolicy::default_for(method),
+        1 => DegeneratePolicy::Legacy,
+        2 => DegeneratePolicy::Skip,
+        3 => DegeneratePolicy::Inherit,
+        4 => DegeneratePolicy::Reject,
+        _ => return None,
+    })
 }
 
 /// The options from the C values, checked.
-fn options(method: u32, policy: u32, threshold: Option<f32>, flip_v: bool, threads: u32) -> Result<Options, Error> {
-    let method = Method::from_code(method)?;
-    let options = Options {
-        method,
-        degenerate_policy: DegeneratePolicy::from_code(policy, method)?,
-        flip_v,
+fn options(
+    py: Python<'_>,
+    method: u32,
+    policy: u32,
+    threshold: Option<f32>,
+    flip_v: bool,
+    threads: u32,
+) -> PyResult<Options> {
+    let plain = |status, message| status_error(py, status, message, Details::default());
+    let chosen = method_of(method).ok_or_else(|| plain(status::UNKNOWN_METHOD, format!("unknown method {method}")))?;
+    let policy = policy_of(policy, chosen)
+        .ok_or_else(|| plain(status::UNKNOWN_POLICY, format!("unknown degenerate policy {policy}")))?;
+    let options = Options::default()
+        .with_method(chosen)
+        .with_policy(policy)
+        .with_flip_v(flip_v)
         // Unlike the C ABI's 0, an explicit 0.0 is a threshold: only non-finite input is degenerate.
-        degenerate_threshold: threshold.unwrap_or(DEFAULT_DEGENERATE_THRESHOLD),
-        threads,
-    };
-    options.validate()?;
+        .with_degenerate_threshold(threshold.unwrap_or(DEFAULT_DEGENERATE_THRESHOLD))
+        .with_threads(threads);
+    options
+        .validate()
+        .map_err(|error| library_error(py, &error, Details::default()))?;
     Ok(options)
 }
 
-fn plain_error(py: Python<'_>, error: Error) -> PyErr {
-    library_error(py, error, Details::default())
-}
-
 /// The report, or the error with what names its culprit.
-fn finish(py: Python<'_>, result: Result<(), Error>, mesh: MeshPlaces, report: &Report) -> PyResult<ReportTuple> {
-    let error = match result {
-        Ok(()) => return Ok(report_tuple(report)),
-        Err(error) => error,
-    };
-    let mut details = Details::default();
-    match error {
-        Error::DegenerateUv => details.report = Some(report_tuple(report)),
-        // SAFETY: the arrays are still this call's arguments, and nothing writes them now.
-        Error::IndexOutOfRange => details.index = first_out_of_range(&unsafe { mesh.mesh() }),
-        _ => {}
+fn finish(py: Python<'_>, result: Result<Report, Error>, mesh: MeshPlaces) -> PyResult<ReportTuple> {
+    match result {
+        Ok(report) => Ok(report_tuple(&report)),
+        Err(error) => {
+            // SAFETY: the arrays are still this call's arguments, and nothing writes them now.
+            let details = Details::of(&error, unsafe { mesh.indices.view() });
+            Err(library_error(py, &error, details))
+        }
     }
-    Err(library_error(py, error, details))
 }

@@ -2,16 +2,13 @@
 
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
-use tbasis::{Error, Mesh, SeamSplit, Strided};
+use tbasis::{Buffer, Error, Mesh, SeamSplit};
 
 use crate::errors::{library_error, Details};
 use crate::views::{indices, rows, IndexPlace, Place};
 
 /// `(new_indices, sources)`.
 type Split<'py> = (Bound<'py, PyArray1<u32>>, Bound<'py, PyArray1<u32>>);
-
-/// Why the split failed, with the first index out of range (its position, its value) when that is why.
-type Failure = (Error, Option<(usize, usize)>);
 
 /// Returns `(new_indices, sources)`, two uint32 arrays, for a mesh of `vertex_count` vertices
 /// whose corners carry `corner_tangents` (a `(corners, 4)` float32 array).
@@ -26,14 +23,11 @@ pub fn split_corners<'py>(
     let corners = rows::<4>("corner_tangents", corner_tangents, false)?;
     match py.detach(|| split(index_place, vertex_count, corners)) {
         Ok(split) => Ok((split.indices.into_pyarray(py), split.sources.into_pyarray(py))),
-        Err((error, index)) => Err(library_error(
-            py,
-            error,
-            Details {
-                index,
-                ..Details::default()
-            },
-        )),
+        Err(error) => {
+            // SAFETY: the indices are still this call's argument.
+            let details = Details::of(&error, unsafe { index_place.view() });
+            Err(library_error(py, &error, details))
+        }
     }
 }
 
@@ -43,42 +37,42 @@ pub fn split_corners<'py>(
 /// them, but only for the vertices the indices use, so that a mesh with many vertices and few
 /// corners costs no more than its corners. The split is then that of a mesh of the used vertices,
 /// whose appended vertices are renumbered to follow all `vertex_count` of them.
-fn split(index_place: IndexPlace, vertex_count: usize, corners: Place) -> Result<SeamSplit, Failure> {
-    let plain = |error| (error, None);
+fn split(index_place: IndexPlace, vertex_count: usize, corners: Place) -> Result<SeamSplit, Error> {
     // SAFETY: the arrays are arguments of the call this runs in, so they outlive it; it only reads.
     let (indices, corner_tangents) = unsafe { (index_place.view(), corners.read::<[f32; 4]>()) };
     // The library's checks, in its order, made here since the mesh it sees has fewer vertices.
-    indices.triangle_count(vertex_count).map_err(plain)?;
+    indices.triangle_count(vertex_count)?;
     let corner_count = indices.corner_count(vertex_count);
     if corner_tangents.len() != corner_count {
-        return Err(plain(Error::InvalidCount));
+        return Err(Error::LengthMismatch {
+            buffer: Buffer::CornerTangents,
+            len: corner_tangents.len(),
+            expected: corner_count,
+        });
     }
     let mut used = 0;
     for corner in 0..corner_count {
         let vertex = indices.corner(corner);
         if vertex >= vertex_count {
-            return Err((Error::IndexOutOfRange, Some((corner, vertex))));
+            return Err(Error::IndexOutOfRange {
+                triangle: corner / 3,
+                index: vertex,
+                vertex_count,
+            });
         }
         used = used.max(vertex + 1);
     }
 
     let mut stand_in: Vec<[f32; 3]> = Vec::new();
-    stand_in
-        .try_reserve_exact(used)
-        .map_err(|_| plain(Error::OutOfMemory))?;
+    stand_in.try_reserve_exact(used).map_err(|_| Error::OutOfMemory)?;
     stand_in.resize(used, [0.0; 3]);
-    let mesh = Mesh {
-        positions: Strided::from_slice(&stand_in),
-        normals: Strided::from_slice(&stand_in),
-        texcoords: None,
-        indices,
-    };
-    let mut split = tbasis::split_corners(&mesh, &corner_tangents).map_err(plain)?;
+    let mesh = Mesh::new(&stand_in[..], &stand_in[..]).with_indices(indices);
+    let mut split = tbasis::split_corners(&mesh, &corner_tangents)?;
     if used < vertex_count {
         // Appended indices must fit 32 bits, as the library checks for the vertices it saw.
         let appended = split.sources.len() as u64;
         if appended > 0 && vertex_count as u64 + appended > u64::from(u32::MAX) + 1 {
-            return Err(plain(Error::TooManyVertices));
+            return Err(Error::TooManyVertices);
         }
         for index in &mut split.indices {
             if *index as usize >= used {

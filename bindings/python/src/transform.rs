@@ -75,7 +75,7 @@ fn transform(
     result.map_err(|(row, error)| {
         library_error(
             py,
-            error,
+            &error,
             Details {
                 row,
                 ..Details::default()

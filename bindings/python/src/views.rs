@@ -187,21 +187,11 @@ impl MeshPlaces {
     pub unsafe fn mesh<'a>(self) -> Mesh<'a> {
         // SAFETY: passed on to the caller.
         unsafe {
-            Mesh {
-                positions: self.positions.read(),
-                normals: self.normals.read(),
-                texcoords: self.texcoords.map(|uvs| uvs.read()),
-                indices: self.indices.view(),
+            let mesh = Mesh::new(self.positions.read(), self.normals.read()).with_indices(self.indices.view());
+            match self.texcoords {
+                Some(uvs) => mesh.with_texcoords(uvs.read()),
+                None => mesh,
             }
         }
     }
-}
-
-/// The first index not below the vertex count, as (its position in the index buffer, its value).
-/// The library reports only that there is one.
-pub fn first_out_of_range(mesh: &Mesh<'_>) -> Option<(usize, usize)> {
-    let vertex_count = mesh.vertex_count();
-    (0..mesh.corner_count())
-        .map(|corner| (corner, mesh.indices.corner(corner)))
-        .find(|&(_, vertex)| vertex >= vertex_count)
 }

@@ -73,13 +73,13 @@ def test_every_class_is_a_tbasis_error_and_the_fitting_builtin() -> None:
             r"index 5 \(triangle 1, corner 2\) is 35, not in range for 35 vertices",
         ),
         ("negative_index", tbasis.IndexOutOfRangeError, r"index 4 \(triangle 1, corner 1\) is -1"),
-        ("index_count", tbasis.InvalidIndexCountError, "not a multiple of 3"),
-        ("unindexed_count", tbasis.InvalidIndexCountError, "not a multiple of 3"),
+        ("index_count", tbasis.InvalidIndexCountError, "143 indices .* must be a multiple of 3"),
+        ("unindexed_count", tbasis.InvalidIndexCountError, r"35 indices \(or unindexed vertices\) .* multiple of 3"),
         ("method", tbasis.InvalidOptionError, "method must be one of 'default', 'lengyel'"),
         ("policy_as_number", tbasis.InvalidOptionError, "policy must be one of"),
         ("threshold", tbasis.InvalidOptionError, "threshold must be finite and not negative"),
         ("threshold_nan", tbasis.InvalidOptionError, "threshold must be finite"),
-        ("threshold_overflow", tbasis.InvalidOptionError, "degenerate_threshold is negative or not finite"),
+        ("threshold_overflow", tbasis.InvalidOptionError, "degenerate_threshold inf is not a finite number >= 0"),
         ("threads", tbasis.InvalidOptionError, "threads must be between 0 and 2\\*\\*32 - 1, not -1"),
         ("threads_float", tbasis.InvalidOptionError, "threads must be an integer"),
         (
@@ -88,7 +88,7 @@ def test_every_class_is_a_tbasis_error_and_the_fitting_builtin() -> None:
             "texcoords is None, but .* needs texture coordinates",
         ),
         ("mikktspace_without_texcoords", tbasis.MissingTexcoordsError, "method 'mikktspace' always does"),
-        ("reject", tbasis.DegenerateUvError, "triangle 0: a triangle has degenerate texture coordinates"),
+        ("reject", tbasis.DegenerateUvError, "triangle 0 has degenerate texture coordinates"),
         ("normals_rows", tbasis.InvalidLayoutError, "normals has 34 rows, positions has 35"),
         ("texcoords_shape", tbasis.InvalidLayoutError, r"texcoords must have shape \(n, 2\), not \(35, 3\)"),
         ("indices_shape", tbasis.InvalidLayoutError, r"indices must have shape \(k,\) or \(m, 3\), not \(72, 2\)"),
@@ -241,7 +241,7 @@ def test_out_overlapping_an_input_is_refused(mesh: Mesh) -> None:
     # Tangents over the normals' bytes: the library refuses before it writes anything.
     error = raises(
         tbasis.OverlapError,
-        "overlaps an input",
+        "the tangents output shares bytes with the normals buffer",
         lambda: tbasis.generate(block[:, :3], block[:, 3:6], mesh.uvs, mesh.indices, out=block[:, 3:7]),
     )
     assert error.status == 10
@@ -249,7 +249,7 @@ def test_out_overlapping_an_input_is_refused(mesh: Mesh) -> None:
     tangents = np.zeros((mesh.count, 4), np.float32)
     raises(
         tbasis.OverlapError,
-        "overlaps",
+        "the tangents output shares bytes with the bitangents buffer",
         lambda: tbasis.generate(
             mesh.positions, mesh.normals, mesh.uvs, mesh.indices, out=tangents, bitangents=tangents[:, :3]
         ),
@@ -273,7 +273,7 @@ def test_split_errors(mesh: Mesh) -> None:
     )
     raises(
         tbasis.InvalidIndexCountError,
-        "not a multiple of 3",
+        "143 indices .* must be a multiple of 3",
         lambda: tbasis.split_corners(mesh.indices[:-1], mesh.count, corners[:-1]),
     )
     raises(

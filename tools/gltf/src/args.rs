@@ -103,14 +103,12 @@ impl Args {
             PolicyArg::Inherit => DegeneratePolicy::Inherit,
             PolicyArg::Reject => DegeneratePolicy::Reject,
         };
-        Options {
-            method,
-            degenerate_policy,
-            flip_v: true,
+        Options::default()
+            .with_method(method)
+            .with_policy(degenerate_policy)
+            .with_flip_v(true)
             // Files run in parallel instead (`--jobs`), and primitives within a file.
-            threads: 1,
-            ..Options::default()
-        }
+            .with_threads(1)
     }
 
     /// Every (input, output) pair, or what is wrong with the command line.

@@ -137,7 +137,7 @@ _BY_STATUS: dict[int, type[Error]] = {
     15: InvalidLayoutError,  # INVALID_COUNT
     18: TooManyVerticesError,
 }
-# NULL_POINTER: texcoords is the only pointer the package may leave out.
+# NULL_POINTER: the C library's status for missing texcoords, which the binding gives too.
 _NULL_POINTER = 1
 _INDEX_OUT_OF_RANGE = 4
 _DEGENERATE_UV = 11
@@ -159,8 +159,8 @@ def from_library(failure: BaseException, vertex_count: int = 0, leading_shape: t
 
         report = Report(*details_map["report"])
         return DegenerateUvError(
-            f"triangle {report.first_degenerate_triangle}: {message} (policy 'reject'; "
-            f"{report.degenerate_triangles} degenerate triangles in all)",
+            f"triangle {report.first_degenerate_triangle} has degenerate texture coordinates, zero area or "
+            f"non-finite input (policy 'reject'; {report.degenerate_triangles} degenerate triangles in all)",
             report,
             status,
         )

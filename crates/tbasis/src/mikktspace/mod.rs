@@ -1,0 +1,424 @@
+//! Method MIKKTSPACE: mikktspace.c's `genTangSpaceDefault`, float for float, in linear time.
+//!
+//! The result is what mikktspace.c hands to `setTSpaceBasic` for corner `k` of face `t` when its
+//! callbacks read the mesh's positions, normals and texture coordinates through the index buffer.
+//! Every step below names the C function it reproduces; each keeps the C's operations and their
+//! order wherever they decide bits, and replaces a search that is quadratic in the C (welding,
+//! edge pairing, sub-groups, the degenerate epilogue) by one that finds the same answer in linear
+//! time.
+#![forbid(unsafe_code)]
+
+mod acos;
+mod arena;
+mod attributes;
+mod faces;
+mod groups;
+mod neighbors;
+mod repair;
+mod threads;
+mod tspace;
+mod vector;
+mod weld;
+
+use glam::Vec3 as GlamVec3;
+
+use self::arena::{bytes_of, Arena};
+use self::attributes::Attributes;
+use self::faces::GROUP_WITH_ANY;
+use self::groups::Groups;
+use self::neighbors::EdgeScratch;
+use self::tspace::{CornerTerms, Inputs};
+use self::vector::{Packed, Vec3};
+use crate::error::Error;
+use crate::mesh::{Mesh, Output};
+use crate::options::{DegeneratePolicy, Options};
+use crate::report::Report;
+use crate::robust::resolve;
+use crate::views::strided::StridedMut;
+
+/// "No index": no neighbour, no group, no corner yet.
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// The largest corner or vertex count: indices stay clear of the sentinels.
+const MAX_COUNT: usize = (u32::MAX / 4) as usize;
+
+/// The arrays that live through the whole call.
+struct Buffers<'a> {
+    /// Per corner: its vertex, then its welded vertex.
+    welded: &'a mut [u32],
+    /// Per welded vertex: the vertex its attributes come from, and those attributes.
+    source: &'a mut [u32],
+    /// Per welded vertex: mikktspace.c's index for it (`4 * face + corner` of its representative).
+    values: &'a mut [u32],
+    attributes: &'a mut [Packed],
+    /// Per vertex, reused by phase (weld classes, first corners, flags).
+    slots: &'a mut [u32],
+    /// Two words per vertex (at least one per corner), reused by phase.
+    table: &'a mut [u32],
+    /// Good triangles in triangle order, then the degenerate ones.
+    order: &'a mut [u32],
+    /// Per good triangle: its welded vertices, derivatives, flags, neighbours and groups.
+    ids: &'a mut [[u32; 3]],
+    tangent_s: &'a mut [Vec3],
+    tangent_t: &'a mut [Vec3],
+    flags: &'a mut [u8],
+    neighbors: &'a mut [[u32; 3]],
+    assigned: &'a mut [[u32; 3]],
+    /// Per corner: the tangent and its orientation (1: preserving, w = +1).
+    tangents: &'a mut [Vec3],
+    orientation: &'a mut [u8],
+    /// Memory for one phase at a time: edge pairing, then groups.
+    phase: &'a mut [u8],
+}
+
+impl<'a> Buffers<'a> {
+    fn take(arena: &mut Arena<'a>, vertex_count: usize, corner_count: usize) -> Result<Self, Error> {
+        let triangles = corner_count / 3;
+        let phase_bytes = bytes_of(|a| edge_scratch(a, corner_count))?.max(bytes_of(|a| group_scratch(a, triangles))?);
+        Ok(Buffers {
+            welded: arena.take(corner_count)?,
+            source: arena.take(corner_count)?,
+            values: arena.take(corner_count)?,
+            attributes: arena.take(corner_count)?,
+            slots: arena.take(vertex_count)?,
+            table: arena.take((2 * vertex_count + 2).max(corner_count))?,
+            order: arena.take(triangles)?,
+            ids: arena.take(triangles)?,
+            tangent_s: arena.take(triangles)?,
+            tangent_t: arena.take(triangles)?,
+            flags: arena.take(triangles)?,
+            neighbors: arena.take(triangles)?,
+            assigned: arena.take(triangles)?,
+            tangents: arena.take(corner_count)?,
+            orientation: arena.take(corner_count)?,
+            phase: arena.take(phase_bytes)?,
+        })
+    }
+}
+
+/// Edge pairing's arrays (welded vertices number at most the corners).
+fn edge_scratch<'a>(arena: &mut Arena<'a>, corner_count: usize) -> Result<EdgeScratch<'a>, Error> {
+    Ok(EdgeScratch {
+        starts: arena.take(corner_count + 1)?,
+        entries: arena.take(corner_count)?,
+        next: arena.take(corner_count)?,
+        head: arena.take(corner_count)?,
+        tail: arena.take(corner_count)?,
+        stamp: arena.take(corner_count)?,
+    })
+}
+
+/// Grouping's and evaluation's arrays: the groups, the search stack, per-corner terms, and a word
+/// per face of the largest group.
+type GroupScratch<'a> = (Groups<'a>, &'a mut [u32], CornerTerms<'a>, &'a mut [u32]);
+
+/// Takes [`GroupScratch`] for `triangles` good triangles.
+fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScratch<'a>, Error> {
+    let groups = Groups {
+        starts: arena.take(3 * triangles + 1)?,
+        faces: arena.take(3 * triangles)?,
+        vertex: arena.take(3 * triangles)?,
+        orientation: arena.take(3 * triangles)?,
+    };
+    let stack = arena.take(6 * triangles + 2)?;
+    let terms = CornerTerms {
+        s: arena.take(3 * triangles)?,
+        t: arena.take(3 * triangles)?,
+        angle: arena.take(3 * triangles)?,
+    };
+    let members = arena.take(triangles)?;
+    Ok((groups, stack, terms, members))
+}
+
+/// Bytes of working memory a call needs; `None` on overflow. The layout's sum, which the header
+/// states as `57 C + 216 T + 4 V + 4 max(2 V + 2, C) + 75` (checked by a test).
+pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
+    if vertex_count == 0 {
+        // Every index is out of range, or there are none: nothing to work on.
+        return Some(0);
+    }
+    if vertex_count > MAX_COUNT || corner_count > MAX_COUNT {
+        return None;
+    }
+    bytes_of(|a| Buffers::take(a, vertex_count, corner_count).map(|_| ())).ok()
+}
+
+/// Writes mikktspace.c's frame for every corner.
+pub(crate) fn generate_corners(
+    mesh: &Mesh,
+    options: &Options,
+    output: &mut StridedMut<[f32; 4]>,
+    bytes: &mut [u8],
+    report: &mut Report,
+) -> Result<(), Error> {
+    let buffers = compute(mesh, options, bytes, report)?;
+    for c in 0..mesh.corner_count() {
+        output.set(c, frame(&buffers, c));
+    }
+    Ok(())
+}
+
+/// Writes each vertex the frame of its first corner; a vertex no triangle uses gets the fallback
+/// frame built from its normal.
+pub(crate) fn generate_vertices(
+    mesh: &Mesh,
+    options: &Options,
+    output: &mut Output,
+    bytes: &mut [u8],
+    report: &mut Report,
+) -> Result<(), Error> {
+    let buffers = compute(mesh, options, bytes, report)?;
+    let mut out = output.whole();
+    for v in 0..mesh.vertex_count() {
+        let normal = GlamVec3::from_array(mesh.normals.get(v));
+        let first = buffers.slots[v];
+        let unit = crate::robust::frame::VertexNormal::new(normal.to_array()).unit;
+        let (tangent, w) = if first == NONE {
+            report.fallback_vertices += 1;
+            resolve::fallback(unit)
+        } else {
+            let [x, y, z, w] = frame(&buffers, first as usize);
+            (GlamVec3::new(x, y, z), w)
+        };
+        // LEGACY keeps the caller's normal as given; the other policies promise a unit bitangent,
+        // so they use the normalized normal (or, without one, a direction across the tangent).
+        let across = match options.degenerate_policy {
+            DegeneratePolicy::Legacy => normal,
+            _ => unit.unwrap_or_else(|| crate::robust::frame::fallback_tangent(tangent)),
+        };
+        out.write(v, tangent, w, across);
+    }
+    Ok(())
+}
+
+/// Corner `c`'s tangent and sign as `setTSpaceBasic` receives them.
+fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
+    let [x, y, z] = buffers.tangents[c];
+    [x, y, z, if buffers.orientation[c] != 0 { 1.0 } else { -1.0 }]
+}
+
+/// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
+/// (in `slots`) every vertex's first corner. Fails before anything reaches the caller's output.
+fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut Report) -> Result<Buffers<'a>, Error> {
+    if mesh.vertex_count() == 0 {
+        // No scratch was asked for: any index is out of range, or there is nothing to do.
+        if mesh.corner_count() > 0 {
+            return Err(mesh.index_error());
+        }
+        *report = Report::default();
+        return Buffers::take(&mut Arena::Count(0), 0, 0);
+    }
+    let mut buffers = Buffers::take(&mut Arena::Carve(bytes), mesh.vertex_count(), mesh.corner_count())?;
+    let (vertex_count, corner_count) = (mesh.vertex_count(), mesh.corner_count());
+    if vertex_count > MAX_COUNT || corner_count > MAX_COUNT {
+        return Err(Error::SizeOverflow);
+    }
+    let attributes = Attributes {
+        mesh,
+        flip_v: options.flip_v,
+    };
+    *report = Report::default();
+
+    // 1. Every corner's vertex, checked against the vertex count.
+    for c in 0..corner_count {
+        let v = mesh.indices.corner(c);
+        if v >= vertex_count {
+            return Err(mesh.index_error());
+        }
+        buffers.welded[c] = v as u32;
+    }
+    // 2. REJECT refuses what the other methods would call degenerate, before anything else.
+    if options.degenerate_policy == DegeneratePolicy::Reject {
+        repair::reject_degenerate(mesh, options)?;
+    }
+    // 3. The default frame (1, 0, 0) with w = -1, kept by corners no group reaches.
+    buffers.tangents.fill([1.0, 0.0, 0.0]);
+    buffers.orientation.fill(0);
+    if corner_count > 0 {
+        solve(&attributes, options.threads, &mut buffers, report)?;
+    }
+    // 4. Policies other than LEGACY replace what no frame can be; then per-vertex counts.
+    if options.degenerate_policy != DegeneratePolicy::Legacy {
+        repair::repair(mesh, options.degenerate_policy, buffers.tangents, buffers.slots, report);
+        report.abnormal_normals = resolve::count_abnormal_normals(mesh);
+    }
+    count_vertices(mesh, &mut buffers, report);
+    Ok(buffers)
+}
+
+/// Steps 5 to 11: mikktspace.c proper.
+fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Report) -> Result<(), Error> {
+    let corner_count = b.welded.len();
+    let triangles = corner_count / 3;
+
+    // 5. Weld corners equal in position, normal and texture coordinate
+    //    (GenerateSharedVerticesIndexList).
+    let welded_count = weld::weld(attributes, b.welded, b.source, b.values);
+    for (packed, &vertex) in b.attributes.iter_mut().zip(&b.source[..welded_count]) {
+        *packed = attributes.key(vertex);
+    }
+    let packed = &b.attributes[..welded_count];
+
+    // 6. Degenerate triangles (two equal positions) last, the good ones in order (DegenPrologue).
+    let good = faces::good_first(packed, b.welded, b.order);
+    for g in 0..triangles {
+        let t = b.order[g] as usize;
+        b.ids[g] = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
+    }
+    let order = &b.order[..good];
+    let ids = &b.ids[..good];
+
+    // 7. Each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19).
+    let ends = threads::ranges(threads, good);
+    let parts = threads::split(&mut b.tangent_s[..good], &ends, 1)
+        .into_iter()
+        .zip(threads::split(&mut b.tangent_t[..good], &ends, 1))
+        .zip(threads::split(&mut b.flags[..good], &ends, 1))
+        .collect();
+    let welded = &*b.welded;
+    threads::run(&ends, parts, |first, ((s, t), flags)| {
+        let end = first + flags.len();
+        faces::derivatives(packed, welded, &order[first..end], s, t, flags)
+    });
+    for t in 0..triangles {
+        let unusable = t >= good || b.flags[t] & GROUP_WITH_ANY != 0;
+        if unusable {
+            report.note_degenerate(b.order[t] as usize);
+        }
+    }
+
+    // 8. The good triangle across each edge (BuildNeighborsFast).
+    {
+        let mut phase = Arena::Carve(&mut *b.phase);
+        let mut edges = edge_scratch(&mut phase, corner_count)?;
+        let used = welded_count + 1;
+        edges.starts = &mut edges.starts[..used];
+        neighbors::pair_edges(ids, &b.values[..welded_count], &mut b.neighbors[..good], edges);
+    }
+
+    // 9. Orientation-preserving groups around each welded vertex (Build4RuleGroups).
+    let mut phase = Arena::Carve(&mut *b.phase);
+    let (mut groups, stack, terms, members) = group_scratch(&mut phase, triangles)?;
+    let group_count = groups::build(
+        ids,
+        &b.neighbors[..good],
+        &mut b.flags[..good],
+        &mut b.assigned[..good],
+        &mut groups,
+        stack,
+    );
+
+    // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace):
+    //     per corner the projected derivatives and the corner angle, then per group the sums.
+    let (tangent_s, tangent_t, flags) = (&b.tangent_s[..good], &b.tangent_t[..good], &b.flags[..good]);
+    let used = CornerTerms {
+        s: &mut terms.s[..3 * good],
+        t: &mut terms.t[..3 * good],
+        angle: &mut terms.angle[..3 * good],
+    };
+    let ends = threads::ranges(threads, good);
+    let CornerTerms { s, t, angle } = used;
+    let parts = threads::split(s, &ends, 3)
+        .into_iter()
+        .zip(threads::split(t, &ends, 3))
+        .zip(threads::split(angle, &ends, 3))
+        .map(|((s, t), angle)| CornerTerms { s, t, angle })
+        .collect();
+    threads::run(&ends, parts, |first, part| {
+        tspace::corner_terms(packed, ids, tangent_s, tangent_t, flags, first, part)
+    });
+    let inputs = Inputs {
+        ids,
+        flags,
+        order,
+        terms: &terms,
+    };
+    for group in 0..group_count {
+        let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
+        tspace::evaluate_group(
+            &inputs,
+            &mut groups.faces[range],
+            groups.vertex[group],
+            groups.orientation[group] != 0,
+            members,
+            b.tangents,
+            b.orientation,
+        );
+    }
+
+    // 11. Degenerate triangles copy the first good corner of the same welded vertex
+    //     (DegenEpilogue).
+    let first_good = &mut b.table[..welded_count];
+    first_good.fill(NONE);
+    for &t in order {
+        for k in 0..3 {
+            let corner = 3 * t as usize + k;
+            let id = b.welded[corner] as usize;
+            if first_good[id] == NONE {
+                first_good[id] = corner as u32;
+            }
+        }
+    }
+    for &t in &b.order[good..] {
+        for k in 0..3 {
+            let corner = 3 * t as usize + k;
+            let from = first_good[b.welded[corner] as usize];
+            if from != NONE {
+                b.tangents[corner] = b.tangents[from as usize];
+                b.orientation[corner] = b.orientation[from as usize];
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
+/// mirrored (corners of both signs) and split (corners that differ in any bit).
+fn count_vertices(mesh: &Mesh, buffers: &mut Buffers, report: &mut Report) {
+    const MIRRORED: u32 = 1;
+    const SPLIT: u32 = 2;
+    let vertex_count = mesh.vertex_count();
+    let first = &mut buffers.slots[..vertex_count];
+    let marks = &mut buffers.table[..vertex_count];
+    first.fill(NONE);
+    marks.fill(0);
+    for c in 0..mesh.corner_count() {
+        let v = mesh.indices.corner(c);
+        if first[v] == NONE {
+            first[v] = c as u32;
+            continue;
+        }
+        let f = first[v] as usize;
+        if buffers.orientation[f] != buffers.orientation[c] {
+            marks[v] |= MIRRORED;
+        }
+        let same = buffers.orientation[f] == buffers.orientation[c]
+            && buffers.tangents[f].map(f32::to_bits) == buffers.tangents[c].map(f32::to_bits);
+        if !same {
+            marks[v] |= SPLIT;
+        }
+    }
+    for v in 0..vertex_count {
+        report.unreferenced_vertices += usize::from(first[v] == NONE);
+        report.mirrored_vertices += usize::from(marks[v] & MIRRORED != 0);
+        report.split_vertices += usize::from(marks[v] & SPLIT != 0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scratch_bytes_follow_the_documented_formula() {
+        for (v, c) in [(1, 3), (3, 3), (4, 6), (100, 30), (10, 300), (1000, 5994), (7, 0)] {
+            let t = c / 3;
+            let formula = 57 * c + 216 * t + 4 * v + 4 * (2 * v + 2).max(c) + 75;
+            assert_eq!(scratch_bytes(v, c), Some(formula), "{v} vertices, {c} corners");
+        }
+        assert_eq!(scratch_bytes(0, 0), Some(0));
+        assert_eq!(scratch_bytes(0, 3), Some(0));
+        assert_eq!(scratch_bytes(usize::MAX / 8, 3), None);
+        assert_eq!(scratch_bytes(3, usize::MAX), None);
+    }
+}

@@ -1,0 +1,437 @@
+//! Per-triangle tangents for every policy but LEGACY, weighted per method and summed per vertex
+//! by handedness.
+#![forbid(unsafe_code)]
+
+use glam::{Vec2, Vec3};
+
+use crate::error::Error;
+use crate::mesh::Mesh;
+use crate::options::{Method, Options};
+use crate::report::Report;
+use crate::robust::batch::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
+use crate::robust::degenerate::Shape;
+use crate::robust::frame::{length_and_direction, length_and_direction_fast};
+use crate::scratch::{flag, Scratch};
+
+/// Per-triangle results for one batch (a lane per triangle).
+///
+/// Both the UV and the position edges are divided by their largest component first: the quality
+/// test and the 2x2 solve then work on numbers near 1 whatever the scale of the mesh or its UVs.
+struct Faces {
+    /// 1 when the triangle is measurable: finite, and UV and position quality at least the
+    /// threshold; else 0. (Lane flags are `u32`: a byte per lane keeps the loop from compiling
+    /// to SIMD.)
+    valid: [u32; LANES],
+    /// 1 when the fast path's lengths over- or underflowed: the lane is redone with
+    /// [`length_and_direction`].
+    careful: [u32; LANES],
+    /// Direction of dP/du, unit length.
+    direction: [Lanes; 3],
+    /// `|dP/du|`, kept apart from the direction so that neither overflows at extreme UV scales
+    /// (UVs of 1e-20 give a length near 1e20, whose square no f32 holds).
+    length: Lanes,
+    /// Position edges `Q1`, `Q2` divided by their largest component.
+    edges: [[Lanes; 3]; 2],
+    /// `edges[0] x edges[1]`: the face normal the winding gives, its length twice the scaled area.
+    face_normal: [Lanes; 3],
+    /// `|edges[0] x edges[1]|`.
+    twice_area: Lanes,
+    /// The largest component of `Q1`, `Q2`, to undo the scaling of areas.
+    position_scale: Lanes,
+    /// The UV determinant (its sign: the UV triangle's winding).
+    det: Lanes,
+    /// How much of its weight the triangle keeps (see [`Shape::confidence`]).
+    confidence: Lanes,
+}
+
+impl Faces {
+    fn new() -> Self {
+        Faces {
+            valid: [0; LANES],
+            careful: [0; LANES],
+            direction: [[0.0; LANES]; 3],
+            length: [0.0; LANES],
+            edges: [[[0.0; LANES]; 3]; 2],
+            face_normal: [[0.0; LANES]; 3],
+            twice_area: [0.0; LANES],
+            position_scale: [0.0; LANES],
+            det: [0.0; LANES],
+            confidence: [0.0; LANES],
+        }
+    }
+
+    /// Solves `Q1 = s1 T + t1 B`, `Q2 = s2 T + t2 B` for `T` (Lengyel 2001) in every lane, and
+    /// marks degenerate the lanes with a non-finite input or a UV or position quality below
+    /// `threshold`.
+    fn solve(&mut self, batch: &TriangleBatch, v_sign: f32, threshold: f32) {
+        let [p0, p1, p2] = &batch.position;
+        let [w0, w1, w2] = &batch.texcoord;
+        for i in 0..lanes_in_use(batch.len) {
+            let q1 = Vec3::new(p1[0][i] - p0[0][i], p1[1][i] - p0[1][i], p1[2][i] - p0[2][i]);
+            let q2 = Vec3::new(p2[0][i] - p0[0][i], p2[1][i] - p0[1][i], p2[2][i] - p0[2][i]);
+            let e1 = Vec2::new(w1[0][i] - w0[0][i], (w1[1][i] - w0[1][i]) * v_sign);
+            let e2 = Vec2::new(w2[0][i] - w0[0][i], (w2[1][i] - w0[1][i]) * v_sign);
+            let uv_scale = e1.abs().max(e2.abs()).max_element();
+            let position_scale = q1.abs().max(q2.abs()).max_element();
+            // Also false for NaN: a non-finite input makes the triangle degenerate.
+            let measurable = (uv_scale > 0.0)
+                & (uv_scale < f32::INFINITY)
+                & (position_scale > 0.0)
+                & (position_scale < f32::INFINITY);
+            let (e1, e2) = (e1 * (1.0 / uv_scale), e2 * (1.0 / uv_scale));
+            let (s1, s2) = (q1 * (1.0 / position_scale), q2 * (1.0 / position_scale));
+            let det = e1.perp_dot(e2);
+            let face_normal = s1.cross(s2);
+            let uv_shape = Shape {
+                twice_area: det.abs(),
+                squared_edges: e1.length_squared() + e2.length_squared() + (e2 - e1).length_squared(),
+            };
+            let position_shape = Shape {
+                twice_area: face_normal.length(),
+                squared_edges: s1.length_squared() + s2.length_squared() + (s2 - s1).length_squared(),
+            };
+            // T = (t2 Q1 - t1 Q2) / det; with scaled UV edges, det = det' * uv_scale^2.
+            let (numerator_length, direction, in_range) = length_and_direction_fast(q1 * e2.y - q2 * e1.y);
+            let direction = direction * det.signum();
+            let length = numerator_length / (det.abs() * uv_scale);
+
+            let valid = measurable & uv_shape.at_least(threshold) & position_shape.at_least(threshold);
+            self.valid[i] = u32::from(valid);
+            self.careful[i] = u32::from(!(in_range & length.is_finite()));
+            set_lane3(&mut self.direction, i, direction.to_array());
+            set_lane3(&mut self.edges[0], i, s1.to_array());
+            set_lane3(&mut self.edges[1], i, s2.to_array());
+            set_lane3(&mut self.face_normal, i, face_normal.to_array());
+            self.length[i] = length;
+            self.twice_area[i] = position_shape.twice_area;
+            self.position_scale[i] = position_scale;
+            self.det[i] = det;
+            self.confidence[i] = uv_shape.confidence();
+        }
+        for i in 0..batch.len {
+            if self.valid[i] & self.careful[i] != 0 {
+                self.solve_carefully(batch, i, v_sign);
+            }
+        }
+    }
+
+    /// Lane `i` again, its dP/du from [`length_and_direction`], which survives any finite scale;
+    /// degenerate if even that length is not finite.
+    #[cold]
+    fn solve_carefully(&mut self, batch: &TriangleBatch, i: usize, v_sign: f32) {
+        let corner = |k: usize| {
+            Vec3::new(
+                batch.position[k][0][i],
+                batch.position[k][1][i],
+                batch.position[k][2][i],
+            )
+        };
+        let uv = |k: usize| Vec2::new(batch.texcoord[k][0][i], batch.texcoord[k][1][i] * v_sign);
+        let (q1, q2) = (corner(1) - corner(0), corner(2) - corner(0));
+        let (e1, e2) = (uv(1) - uv(0), uv(2) - uv(0));
+        let uv_scale = e1.abs().max(e2.abs()).max_element();
+        let (e1, e2) = (e1 * (1.0 / uv_scale), e2 * (1.0 / uv_scale));
+        let det = self.det[i];
+        let solved = length_and_direction(q1 * e2.y - q2 * e1.y)
+            .map(|(numerator_length, direction)| (numerator_length / (det.abs() * uv_scale), direction))
+            .filter(|(length, _)| length.is_finite());
+        let Some((length, direction)) = solved else {
+            self.valid[i] = 0;
+            return;
+        };
+        set_lane3(&mut self.direction, i, (direction * det.signum()).to_array());
+        self.length[i] = length;
+    }
+}
+
+/// Each corner's handedness for one batch: which of its vertex's sums the corner adds to.
+struct Sides {
+    /// 1 for a right-handed corner, else 0 (`u32` for the reason [`Faces::valid`] gives).
+    right_handed: [[u32; LANES]; 3],
+}
+
+impl Sides {
+    fn new() -> Self {
+        Sides {
+            right_handed: [[0; LANES]; 3],
+        }
+    }
+
+    /// A corner is right-handed when its triangle's UV determinant is positive, unless its vertex
+    /// normal faces away from the winding, which turns the frame's handedness; a non-finite normal
+    /// says nothing about it.
+    fn classify(&mut self, faces: &Faces, batch: &TriangleBatch) {
+        for k in 0..3 {
+            for i in 0..lanes_in_use(batch.len) {
+                let normal = lane3(&batch.normal[k], i);
+                let facing_away = normal.is_finite() & (normal.dot(lane3(&faces.face_normal, i)) < 0.0);
+                self.right_handed[k][i] = u32::from((faces.det[i] > 0.0) != facing_away);
+            }
+        }
+    }
+}
+
+/// Corner `k`'s contributions for one batch: the tangent times its weight, and the weight.
+struct Corners {
+    tangent: [[Lanes; 3]; 3],
+    weight: [Lanes; 3],
+}
+
+impl Corners {
+    fn new() -> Self {
+        Corners {
+            tangent: [[[0.0; LANES]; 3]; 3],
+            weight: [[0.0; LANES]; 3],
+        }
+    }
+
+    /// What each corner adds to its vertex (normal `n`).
+    ///
+    /// LENGYEL adds the unnormalized dP/du, so long or stretched triangles dominate; ANGLE projects
+    /// the face tangent into the vertex's tangent plane, normalizes it and weights it by the
+    /// corner angle (as MikkTSpace does); AREA and UNIFORM add the unit face tangent weighted by
+    /// area or by 1 (per-face averaging). Every weight is scaled by the triangle's confidence.
+    fn weigh(&mut self, method: Method, faces: &Faces, batch: &TriangleBatch) {
+        let lanes = lanes_in_use(batch.len);
+        // One loop per case, with nothing to decide inside: each compiles to SIMD.
+        for k in 0..3 {
+            let normals = &batch.normal[k];
+            match method {
+                Method::Lengyel => self.set(k, lanes, |i| (lane3(&faces.direction, i), faces.length[i]), faces),
+                // MIKKTSPACE has its own module and never comes here.
+                Method::Angle | Method::Mikktspace => match k {
+                    0 => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (a, b)), faces),
+                    1 => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (b - a, -a)), faces),
+                    _ => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (-b, a - b)), faces),
+                },
+                Method::Area => self.set(
+                    k,
+                    lanes,
+                    |i| {
+                        let scale = faces.position_scale[i];
+                        (lane3(&faces.direction, i), 0.5 * faces.twice_area[i] * scale * scale)
+                    },
+                    faces,
+                ),
+                Method::Uniform => self.set(k, lanes, |i| (lane3(&faces.direction, i), 1.0), faces),
+            }
+        }
+    }
+
+    /// Stores corner `k`'s `tangent * weight` and weight, from the method's `(tangent, weight)`
+    /// scaled by the triangle's confidence.
+    #[inline(always)]
+    fn set(&mut self, k: usize, lanes: usize, corner: impl Fn(usize) -> (Vec3, f32), faces: &Faces) {
+        for i in 0..lanes {
+            let (tangent, weight) = corner(i);
+            let weight = weight * faces.confidence[i];
+            let tangent = tangent * weight;
+            set_lane3(&mut self.tangent[k], i, tangent.to_array());
+            self.weight[k][i] = weight;
+        }
+    }
+}
+
+/// ANGLE at one corner: the face tangent projected into the vertex's tangent plane, and the
+/// corner angle between the edges `edges(Q1', Q2')` gives.
+#[inline(always)]
+fn angle_corner(
+    faces: &Faces,
+    normals: &[Lanes; 3],
+    i: usize,
+    edges: impl Fn(Vec3, Vec3) -> (Vec3, Vec3),
+) -> (Vec3, f32) {
+    let (e1, e2) = edges(lane3(&faces.edges[0], i), lane3(&faces.edges[1], i));
+    let angle = atan2_upper(faces.twice_area[i], e1.dot(e2));
+    (project(lane3(&faces.direction, i), lane3(normals, i)), angle)
+}
+
+/// `T - N (N.T) / (N.N)`, normalized (zero when nothing is left): the projection needs no unit
+/// normal; a zero or non-finite normal leaves `T` as it is.
+#[inline(always)]
+fn project(direction: Vec3, normal: Vec3) -> Vec3 {
+    let n_squared = normal.length_squared();
+    let usable = (n_squared > 0.0) & n_squared.is_finite();
+    let projected = direction - normal * (normal.dot(direction) / n_squared);
+    let projected = if usable { projected } else { direction };
+    let inverse_length = 1.0 / projected.length();
+    if inverse_length.is_finite() & (inverse_length > 0.0) {
+        projected * inverse_length
+    } else {
+        Vec3::ZERO
+    }
+}
+
+/// The interior angle at a corner is `atan2(|e1 x e2|, e1 . e2)`, accurate for small and obtuse
+/// angles alike; `|e1 x e2|` is the same at every corner (twice the area).
+///
+/// `atan2(y, x)` for `y >= 0`, within 2e-6 radians: ample for a weight, and far cheaper than libm.
+///
+/// The octant is folded onto `atan(a)` with `a = min/max` in [0, 1], where an odd polynomial of
+/// degree 11 (a minimax fit, maximum error 1.7e-6) stands in for it.
+#[inline(always)]
+fn atan2_upper(y: f32, x: f32) -> f32 {
+    const C: [f32; 6] = [
+        0.999_977_2,
+        -0.332_622_86,
+        0.193_540_4,
+        -0.116_426_39,
+        0.052_647_17,
+        -0.011_719_046,
+    ];
+    let ax = x.abs();
+    let (small, large) = if y <= ax { (y, ax) } else { (ax, y) };
+    let a = small / large;
+    let s = a * a;
+    let atan = a * (C[0] + s * (C[1] + s * (C[2] + s * (C[3] + s * (C[4] + s * C[5])))));
+    let first_quadrant = if y > ax {
+        core::f32::consts::FRAC_PI_2 - atan
+    } else {
+        atan
+    };
+    let angle = if x < 0.0 {
+        core::f32::consts::PI - first_quadrant
+    } else {
+        first_quadrant
+    };
+    if large > 0.0 {
+        angle
+    } else {
+        0.0
+    }
+}
+
+/// Adds each triangle's tangent to its corners, split by the corner's handedness (the UV
+/// orientation relative to the vertex normal), so that a vertex on a mirror fold can keep one
+/// side's frame instead of a cancelled sum. Degenerate triangles only mark their vertices used.
+///
+/// Per-triangle and per-corner arithmetic runs a batch of triangles at a time, lane by lane; the
+/// sums are added one triangle at a time, in triangle order.
+pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Result<Report, Error> {
+    let Some(texcoords) = mesh.texcoords else {
+        return mark_referenced(mesh, scratch);
+    };
+    let mut report = Report::default();
+    let v_sign = if options.flip_v { -1.0 } else { 1.0 };
+    let owned = scratch.first..scratch.first + scratch.flags.len();
+    let triangles = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
+    let mut reader = BatchReader::new(
+        mesh,
+        texcoords,
+        triangles,
+        |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v)),
+        true,
+    );
+    // Each in its own let, so that the 16 KiB of lanes are built in place rather than moved.
+    let mut batch = TriangleBatch::new();
+    let mut faces = Faces::new();
+    let mut sides = Sides::new();
+    let mut corners = Corners::new();
+    while reader.fill(&mut batch)? {
+        faces.solve(&batch, v_sign, options.degenerate_threshold);
+        sides.classify(&faces, &batch);
+        corners.weigh(options.method, &faces, &batch);
+        for lane in 0..batch.len {
+            if faces.valid[lane] == 0 {
+                if scratch.slot(batch.vertex[0][lane]).is_some() {
+                    report.note_degenerate(batch.triangle[lane]);
+                }
+                for corner in &batch.vertex {
+                    if let Some(slot) = scratch.slot(corner[lane]) {
+                        scratch.flags[slot] |= flag::REFERENCED;
+                    }
+                }
+                continue;
+            }
+            let orientation = if faces.det[lane] > 0.0 {
+                flag::POSITIVE_UV
+            } else {
+                flag::NEGATIVE_UV
+            };
+            for (k, corner) in batch.vertex.iter().enumerate() {
+                let Some(slot) = scratch.slot(corner[lane]) else {
+                    continue;
+                };
+                let sums = &mut scratch.sums[slot];
+                let side = if sides.right_handed[k][lane] != 0 {
+                    &mut sums.primary
+                } else {
+                    &mut sums.secondary
+                };
+                for (sum, tangent) in side.iter_mut().zip(&corners.tangent[k]) {
+                    *sum += tangent[lane];
+                }
+                sums.weight += corners.weight[k][lane];
+                scratch.flags[slot] |= flag::REFERENCED | orientation;
+            }
+        }
+    }
+    Ok(report)
+}
+
+/// Calls `visit(t, k, v, right_handed)` for corner `k` (vertex `v`) of each non-degenerate
+/// triangle `t` in `triangles` whose vertices `keep` accepts, in triangle order: the handedness
+/// [`accumulate`] added that corner with, computed the same way. Without texture coordinates no
+/// triangle is measured and nothing is visited.
+pub fn visit_corner_sides(
+    mesh: &Mesh,
+    options: &Options,
+    triangles: core::ops::Range<usize>,
+    keep: impl Fn(&[usize; 3]) -> bool,
+    mut visit: impl FnMut(usize, usize, usize, bool),
+) -> Result<(), Error> {
+    let Some(texcoords) = mesh.texcoords else {
+        return Ok(());
+    };
+    let v_sign = if options.flip_v { -1.0 } else { 1.0 };
+    let mut reader = BatchReader::new(mesh, texcoords, triangles, keep, true);
+    let mut batch = TriangleBatch::new();
+    let mut faces = Faces::new();
+    let mut sides = Sides::new();
+    while reader.fill(&mut batch)? {
+        faces.solve(&batch, v_sign, options.degenerate_threshold);
+        sides.classify(&faces, &batch);
+        for lane in (0..batch.len).filter(|&lane| faces.valid[lane] != 0) {
+            for k in 0..3 {
+                visit(
+                    batch.triangle[lane],
+                    k,
+                    batch.vertex[k][lane],
+                    sides.right_handed[k][lane] != 0,
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Without texture coordinates nothing is measured: the triangles only mark their vertices used.
+fn mark_referenced(mesh: &Mesh, scratch: &mut Scratch) -> Result<Report, Error> {
+    for t in 0..mesh.indices.triangle_count(mesh.vertex_count())? {
+        for v in mesh.checked_triangle(t)? {
+            if let Some(slot) = scratch.slot(v) {
+                scratch.flags[slot] |= flag::REFERENCED;
+            }
+        }
+    }
+    Ok(Report::default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn polynomial_atan2_is_within_2e6_of_libm_over_the_upper_half_plane() {
+        let mut worst = 0.0f32;
+        for i in 0..=20_000 {
+            let angle = core::f32::consts::PI * i as f32 / 20_000.0;
+            for length in [1e-3f32, 1.0, 7.5e3] {
+                let (y, x) = (angle.sin().abs() * length, angle.cos() * length);
+                worst = worst.max((atan2_upper(y, x) - y.atan2(x)).abs());
+            }
+        }
+        assert!(worst <= 2e-6, "worst error {worst}");
+        assert_eq!(atan2_upper(0.0, 0.0), 0.0);
+    }
+}

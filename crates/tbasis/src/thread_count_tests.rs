@@ -1,0 +1,182 @@
+//! `threads = N` changes nothing but speed, on random meshes of up to 10k vertices.
+//!
+//! Under `cfg(test)` a worker needs only 16 vertices (8 triangles for MIKKTSPACE) instead of tens
+//! of thousands, so these small meshes really are split across 2 and 8 workers, at every place a
+//! range boundary can fall: shared vertices, degenerate and collapsed-UV triangles, mirror folds,
+//! vertices to inherit from far away.
+#![forbid(unsafe_code)]
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngSeed};
+
+use crate::test_rng::TestRng;
+use crate::{
+    generate, generate_corners, DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Report, Strided,
+    StridedMut,
+};
+
+/// A mesh drawn from a seed: positions on a wavy sheet, UVs that are smooth, mirrored on one side
+/// and collapsed in patches, triangles mostly between nearby vertices (so a split pays off and
+/// the workers really run) with a few long ones across ranges.
+#[derive(Debug)]
+struct RandomMesh {
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    texcoords: Vec<[f32; 2]>,
+    indices: Option<Vec<u32>>,
+}
+
+impl RandomMesh {
+    fn new(vertex_count: usize, seed: u64, indexed: bool) -> Self {
+        let mut bits = TestRng(seed | 1);
+        let width = (vertex_count as f32).sqrt().ceil() as usize;
+        let mut mesh = RandomMesh {
+            positions: Vec::with_capacity(vertex_count),
+            normals: Vec::with_capacity(vertex_count),
+            texcoords: Vec::with_capacity(vertex_count),
+            indices: None,
+        };
+        for v in 0..vertex_count {
+            let (x, y) = ((v % width) as f32, (v / width) as f32);
+            let z = (0.3 * x).sin() * (0.2 * y).cos() + 0.1 * bits.unit();
+            mesh.positions.push([x + 0.4 * bits.unit(), y + 0.4 * bits.unit(), z]);
+            let normal = match bits.below(50) {
+                0 => [0.0; 3],
+                1 => [f32::NAN, 0.0, 1.0],
+                _ => [0.2 * bits.unit() - 0.1, 0.2 * bits.unit() - 0.1, 1.0],
+            };
+            mesh.normals.push(normal);
+            // Mirrored left of x = width/2; collapsed to a point in some rows; quantised in others.
+            let u = if 2 * (v % width) < width { -x } else { x } / width as f32;
+            let uv = match (v / width) % 7 {
+                3 => [0.5, 0.5],
+                5 => [(u * 4.0).round() / 4.0, (y / 8.0).round()],
+                _ => [u + 0.01 * bits.unit(), y / width as f32],
+            };
+            mesh.texcoords.push(uv);
+        }
+        if vertex_count < 3 {
+            mesh.indices = indexed.then(Vec::new);
+            return mesh;
+        }
+        let mut indices = Vec::with_capacity(6 * vertex_count);
+        for v in 0..vertex_count {
+            for _ in 0..2 {
+                let near = |bits: &mut TestRng| (v + bits.below(2 * width + 2)).min(vertex_count - 1) as u32;
+                let far = bits.below(vertex_count) as u32;
+                let second = near(&mut bits);
+                let third = if bits.below(40) == 0 { far } else { near(&mut bits) };
+                indices.extend([v as u32, second, third]);
+            }
+        }
+        if indexed {
+            mesh.indices = Some(indices);
+        } else {
+            // Each corner its own vertex, as an unindexed mesh stores them.
+            let corner = |list: &Vec<[f32; 3]>| indices.iter().map(|&i| list[i as usize]).collect::<Vec<_>>();
+            let texcoords = indices.iter().map(|&i| mesh.texcoords[i as usize]).collect();
+            mesh = RandomMesh {
+                positions: corner(&mesh.positions),
+                normals: corner(&mesh.normals),
+                texcoords,
+                indices: None,
+            };
+        }
+        mesh
+    }
+
+    fn mesh(&self) -> Mesh<'_> {
+        Mesh {
+            positions: Strided::from_slice(&self.positions),
+            normals: Strided::from_slice(&self.normals),
+            texcoords: Some(Strided::from_slice(&self.texcoords)),
+            indices: match &self.indices {
+                Some(indices) => Indices::U32(Strided::from_slice(indices)),
+                None => Indices::None,
+            },
+        }
+    }
+}
+
+/// Everything a call gives back, as bits.
+#[derive(Debug, PartialEq)]
+struct Outcome {
+    result: Result<Report, Error>,
+    vertex_bits: Vec<u32>,
+    corner_result: Result<Report, Error>,
+    corner_bits: Vec<u32>,
+}
+
+fn run(mesh: &RandomMesh, options: &Options) -> Outcome {
+    let mesh_view = mesh.mesh();
+    let mut tangents = vec![[0.0f32; 4]; mesh.positions.len()];
+    let mut bitangents = vec![[0.0f32; 3]; mesh.positions.len()];
+    let mut output = Output {
+        tangents: StridedMut::from_slice(&mut tangents),
+        bitangents: Some(StridedMut::from_slice(&mut bitangents)),
+    };
+    let result = generate(&mesh_view, options, &mut output);
+    let mut corners = vec![[0.0f32; 4]; mesh_view.corner_count()];
+    let corner_result = generate_corners(&mesh_view, options, &mut StridedMut::from_slice(&mut corners));
+    let vertex_bits = tangents.iter().flatten().chain(bitangents.iter().flatten());
+    Outcome {
+        result,
+        vertex_bits: vertex_bits.map(|x| x.to_bits()).collect(),
+        corner_result,
+        corner_bits: corners.iter().flatten().map(|x| x.to_bits()).collect(),
+    }
+}
+
+/// Vertex counts spread evenly over orders of magnitude, 0 to 10k.
+fn vertex_count() -> impl Strategy<Value = usize> {
+    (0u32..=400).prop_map(|step| (10f64.powf(f64::from(step) / 100.0) as usize).saturating_sub(1))
+}
+
+proptest! {
+    #![proptest_config(Config {
+        cases: 12,
+        rng_seed: RngSeed::Fixed(0x7EAD_5EED),
+        failure_persistence: None,
+        ..Config::default()
+    })]
+
+    #[test]
+    fn every_method_and_policy_gives_the_same_bits_on_1_2_and_8_threads(
+        vertex_count in vertex_count(),
+        seed in any::<u64>(),
+        indexed in prop::bool::weighted(0.8),
+    ) {
+        let mesh = RandomMesh::new(vertex_count, seed, indexed);
+        let methods = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform, Method::Mikktspace];
+        let policies = [
+            DegeneratePolicy::Legacy,
+            DegeneratePolicy::Skip,
+            DegeneratePolicy::Inherit,
+            DegeneratePolicy::Reject,
+        ];
+        for method in methods {
+            for policy in policies {
+                let options = Options { method, degenerate_policy: policy, ..Options::default() };
+                let one = run(&mesh, &Options { threads: 1, ..options });
+                for threads in [2, 8] {
+                    let many = run(&mesh, &Options { threads, ..options });
+                    prop_assert!(
+                        many == one,
+                        "{method:?} {policy:?}, {vertex_count} vertices: threads={threads} differs from 1"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_random_meshes_are_split_across_workers() {
+    for vertex_count in [1000, 10_000] {
+        let mesh = RandomMesh::new(vertex_count, 7, true);
+        for threads in [2, 8] {
+            let workers = crate::parallel::worker_count(threads, &mesh.mesh());
+            assert_eq!(workers, threads as usize, "{vertex_count} vertices, threads={threads}");
+        }
+    }
+}
