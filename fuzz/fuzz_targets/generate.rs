@@ -1,5 +1,7 @@
 //! Fuzzes the C ABI: `tbasis_generate`, `tbasis_generate_corners` (and, for some inputs,
-//! `tbasis_calculate_tangent_array`), and method MIKKTSPACE against mikktspace.c itself.
+//! `tbasis_calculate_tangent_array`), the Rust API against it, and method MIKKTSPACE against
+//! mikktspace.c itself. The C library (`tbasis-ffi`) builds no rlib: its boundary, `src/ffi.rs`
+//! and `src/status.rs`, is compiled into this binary as the modules `ffi` and `status`.
 //!
 //! The input bytes choose a vertex count, strides, where each buffer sits inside one byte arena
 //! (unaligned, interleaved, overlapping on purpose), which pointers are NULL, the indices, the
@@ -11,10 +13,11 @@
 //! options, the tangents after the inputs). After each call the harness checks, independently of
 //! the library's code (`generate/call.rs`, `generate/outputs.rs`):
 //!
-//! - the status is one the description allows (an error the inputs really contain; OK when they
-//!   contain none);
+//! - the status is one the library defines (`status.rs`, each with its message) and one the
+//!   description allows (an error the inputs really contain; OK when they contain none);
 //! - on an error, no byte changed (the caller scratch excepted: it is working memory), and the
-//!   report is untouched unless the status is DEGENERATE_UV;
+//!   report is untouched unless the status is DEGENERATE_UV or INDEX_OUT_OF_RANGE (then it holds
+//!   zero counts and the first triangle with an index out of range in `failed_triangle`);
 //! - on OK, only tangent and bitangent elements (and the scratch) changed, and the report adds up;
 //! - on OK with method LENGYEL and policy LEGACY, the bits equal those of the C port of the
 //!   original listing, `c_tests/listing.c` (as do those of `tbasis_calculate_tangent_array`);
@@ -26,7 +29,12 @@
 //!   normal, `w` is exactly +1 or -1, bitangents are `w * cross(n, t)`, and the result is the same
 //!   with or without caller scratch;
 //! - per corner, the per-vertex methods give each corner its vertex's bits from `tbasis_generate`
-//!   (under LEGACY, and everywhere on a mesh without mirror folds) and the same report.
+//!   (under LEGACY, and everywhere on a mesh without mirror folds) and the same report;
+//! - on OK and on DEGENERATE_UV, the Rust API on the same mesh and options (`generate/rust_api.rs`)
+//!   gives the same bits and report, or the same refusal: `generate` and `generate_corners`, the
+//!   same in one `ScratchBuffer` reused by both calls of the input, and, per vertex,
+//!   `generate_interleaved` over an interleaved copy of the mesh (a layout the bytes pick), which
+//!   writes no byte but the tangents; `scratch_size_for` agrees with `tbasis_scratch_size`.
 //!
 //! Then, whenever the bytes make a mesh the library must accept (whatever the calls above were
 //! asked), method MIKKTSPACE with policy LEGACY, `flip_v` off and on, one and two threads, runs
@@ -63,6 +71,13 @@
 mod arena;
 #[path = "generate/call.rs"]
 mod call;
+// The C boundary (the `tbasis-ffi` crate has no rlib): its sources, compiled into this binary.
+// Formatted and linted as part of the C crate; `cargo fmt` here leaves it (and status.rs) alone.
+// Its features (`fault-injection`, for the C crate's tests) are never on here.
+#[allow(non_camel_case_types, dead_code, unsafe_op_in_unsafe_fn, unexpected_cfgs)]
+#[rustfmt::skip]
+#[path = "../../src/ffi.rs"]
+mod ffi;
 #[path = "generate/frames.rs"]
 mod frames;
 #[path = "generate/input.rs"]
@@ -82,8 +97,15 @@ mod outputs;
 mod packed;
 #[path = "generate/plan.rs"]
 mod plan;
+#[path = "generate/rust_api.rs"]
+mod rust_api;
+#[allow(non_camel_case_types, dead_code)]
+#[rustfmt::skip]
+#[path = "../../src/status.rs"]
+mod status;
 
 use libfuzzer_sys::fuzz_target;
+use tbasis::ScratchBuffer;
 
 use crate::input::Input;
 use crate::packed::Packed;
@@ -103,7 +125,9 @@ fn run(data: &[u8]) {
         mesh.describe();
     }
     let mut scratch_arena = vec![plan.scratch_fill; plan.scratch.arena_len];
-    call::check_call(&plan, &mut arena, &mut scratch_arena, mesh.as_ref());
+    // Reused by both calls' Rust API checks, so the second starts with what the first left.
+    let mut rust_scratch = ScratchBuffer::new();
+    call::check_call(&plan, &mut arena, &mut scratch_arena, mesh.as_ref(), &mut rust_scratch);
     if also_listing {
         listing_entry::check_listing_entry(&mut input);
     }
@@ -111,7 +135,13 @@ fn run(data: &[u8]) {
     let corners = decode_corners_plan(&mut input, &plan);
     let mut arena = pristine;
     let mut scratch_arena = vec![corners.scratch_fill; corners.scratch.arena_len];
-    call::check_call(&corners, &mut arena, &mut scratch_arena, mesh.as_ref());
+    call::check_call(
+        &corners,
+        &mut arena,
+        &mut scratch_arena,
+        mesh.as_ref(),
+        &mut rust_scratch,
+    );
 
     if let Some(mesh) = &mesh {
         mikktspace::check(mesh, &[1, 2]);

@@ -1,7 +1,9 @@
 //! Buffers inside a byte arena the harness owns: where they are, what the header says about them,
 //! and reading and writing their elements.
 
-use tbasis::ffi::{tbasis_status, TBASIS_ERROR_INVALID_STRIDE, TBASIS_ERROR_NULL_POINTER, TBASIS_ERROR_SIZE_OVERFLOW};
+use crate::status::{
+    tbasis_status, TBASIS_ERROR_INVALID_STRIDE, TBASIS_ERROR_NULL_POINTER, TBASIS_ERROR_SIZE_OVERFLOW,
+};
 
 use crate::input::{vector, Encoding, Input};
 

@@ -6,16 +6,20 @@ use core::ffi::{c_void, CStr};
 use core::mem::size_of;
 use core::ptr;
 
-use tbasis::ffi::*;
+use tbasis::ScratchBuffer;
+
+use crate::ffi::*;
+use crate::status::*;
 
 use crate::arena::{bit, first_change_outside, vec_at, Buf};
 use crate::frames::length;
-use crate::outputs::{check_corner_outputs, check_vertex_outputs};
+use crate::outputs::{check_corner_outputs, check_vertex_outputs, options};
 use crate::packed::Packed;
 use crate::plan::{
     assert_harness_sound, describe, read_indices, triangles_of, Footprints, Plan, ARENA, BIT, IDX, NAMES, NRM, POS,
     TAN, UV,
 };
+use crate::rust_api::{self, CResult};
 
 const REPORT_BYTES: usize = size_of::<tbasis_report>();
 
@@ -269,7 +273,33 @@ fn call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], with_scratch: b
     (status, report_bytes)
 }
 
+/// The statuses the C library defines: every value `status.rs` describes (`message_nul`), so the
+/// list grows with the library's own.
+fn known_statuses() -> &'static [tbasis_status] {
+    static KNOWN: std::sync::OnceLock<Vec<tbasis_status>> = std::sync::OnceLock::new();
+    KNOWN.get_or_init(|| {
+        let known: Vec<tbasis_status> = (0..=u8::MAX.into()).filter(|&s| message_nul(s).is_some()).collect();
+        for &s in &known {
+            // SAFETY: the library returns a static NUL-terminated string for every value.
+            let text = unsafe { CStr::from_ptr(tbasis_status_string(s)) };
+            let message = message_nul(s).unwrap();
+            assert_eq!(
+                text.to_bytes_with_nul(),
+                message.as_bytes(),
+                "tbasis_status_string({s}) is not its message"
+            );
+            assert!(!text.to_bytes().is_empty(), "empty status string for {s}");
+        }
+        known
+    })
+}
+
 fn check_status_string(status: tbasis_status) {
+    assert!(
+        known_statuses().contains(&status),
+        "status {status} is none the library defines ({:?})",
+        known_statuses()
+    );
     // SAFETY: the library returns a static NUL-terminated string for every value.
     let text = unsafe { CStr::from_ptr(tbasis_status_string(status)) };
     assert!(!text.to_bytes().is_empty(), "empty status string for {status}");
@@ -316,7 +346,14 @@ fn name(plan: &Plan) -> &'static str {
 
 /// Makes the plan's call over `arena` and checks everything about it; `mesh` is the mesh as the
 /// library reads it, when it can.
-pub fn check_call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], mesh: Option<&Packed>) {
+/// `rust_scratch` is the `ScratchBuffer` every call of the input reuses (`generate/rust_api.rs`).
+pub fn check_call(
+    plan: &Plan,
+    arena: &mut [u8],
+    scratch_arena: &mut [u8],
+    mesh: Option<&Packed>,
+    rust_scratch: &mut ScratchBuffer,
+) {
     if debugging() {
         eprintln!("{plan:#?}");
     }
@@ -374,16 +411,20 @@ pub fn check_call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], mesh:
 
     let report = check_report_bytes(plan, status, &report_bytes);
     if let (true, Some(r)) = (debugging(), report) {
-        eprintln!("report: {}", describe_report(&r));
+        eprintln!("report: {}, failed triangle {}", describe_report(&r), r.failed_triangle);
+    }
+    if let (TBASIS_ERROR_INDEX_OUT_OF_RANGE, Some(report)) = (status, report) {
+        check_index_report(plan, &report, &before);
     }
     if ok || status == TBASIS_ERROR_DEGENERATE_UV {
         let triangles = triangles_of(plan, &before);
         if let Some(report) = report {
             check_report(plan, status, &report, &triangles, &before);
         }
+        // The call accepted the mesh, so the harness can read it too.
+        let mesh = mesh.unwrap_or_else(|| panic!("{what} accepted a mesh the harness finds invalid"));
+        check_rust_api(plan, arena, report.as_ref(), ok, mesh, rust_scratch);
         if ok {
-            // The call accepted the mesh, so the harness can read it too.
-            let mesh = mesh.unwrap_or_else(|| panic!("{what} accepted a mesh the harness finds invalid"));
             if plan.corners {
                 check_corner_outputs(plan, &before, arena, report.as_ref(), mesh);
             } else {
@@ -393,6 +434,33 @@ pub fn check_call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], mesh:
                 check_without_scratch(plan, &before, arena, &report_bytes);
             }
         }
+    }
+}
+
+/// The Rust API on the same mesh and options gives what the call gave (`ok`: its outputs in
+/// `arena`; otherwise DEGENERATE_UV) and the same `report`.
+fn check_rust_api(
+    plan: &Plan,
+    arena: &[u8],
+    report: Option<&tbasis_report>,
+    ok: bool,
+    mesh: &Packed,
+    rust_scratch: &mut ScratchBuffer,
+) {
+    let b = &plan.bufs;
+    let tangents: Vec<[f32; 4]> = (0..plan.outputs()).map(|i| vec_at(arena, b[TAN].element(i))).collect();
+    let bitangents: Option<Vec<[f32; 3]>> = (!plan.corners && !b[BIT].null)
+        .then(|| (0..plan.outputs()).map(|i| vec_at(arena, b[BIT].element(i))).collect());
+    let c = CResult {
+        tangents: ok.then_some(&tangents[..]),
+        bitangents: bitangents.as_deref(),
+        report: report.map(describe_report),
+    };
+    let options = options(plan);
+    if plan.corners {
+        rust_api::check_corners(plan, mesh, &options, &c, rust_scratch);
+    } else {
+        rust_api::check_vertices(plan, mesh, &options, &c, rust_scratch);
     }
 }
 
@@ -431,7 +499,11 @@ fn check_without_scratch(plan: &Plan, before: &[u8], with_scratch: &[u8], report
 /// Checks the bytes around the report and returns its fields when the call should have filled it.
 fn check_report_bytes(plan: &Plan, status: tbasis_status, bytes: &[u8]) -> Option<tbasis_report> {
     let ro = plan.struct_offsets[3];
-    let filled = !plan.report_null && (status == TBASIS_OK || status == TBASIS_ERROR_DEGENERATE_UV);
+    let filled = !plan.report_null
+        && matches!(
+            status,
+            TBASIS_OK | TBASIS_ERROR_DEGENERATE_UV | TBASIS_ERROR_INDEX_OUT_OF_RANGE
+        );
     let untouched = vec![REPORT_FILL; REPORT_BUFFER];
     let writable = if filled {
         vec![(ro, ro + REPORT_BYTES)]
@@ -443,6 +515,28 @@ fn check_report_bytes(plan: &Plan, status: tbasis_status, bytes: &[u8]) -> Optio
     }
     // SAFETY: `bytes` holds a whole report at `ro`; the read is unaligned.
     filled.then(|| unsafe { ptr::read_unaligned(bytes.as_ptr().add(ro).cast::<tbasis_report>()) })
+}
+
+/// INDEX_OUT_OF_RANGE: the report names the first triangle with an index not below the vertex
+/// count in `failed_triangle`, and every count is 0.
+fn check_index_report(plan: &Plan, report: &tbasis_report, arena: &[u8]) {
+    assert!(
+        !plan.bufs[IDX].null && plan.bufs[IDX].placed(ARENA),
+        "INDEX_OUT_OF_RANGE without indices the harness can read"
+    );
+    let indices = read_indices(plan, arena);
+    let whole = indices.len() - indices.len() % 3;
+    let first = indices[..whole]
+        .iter()
+        .position(|&i| i >= plan.vertex_count)
+        .map(|k| k / 3)
+        .expect("INDEX_OUT_OF_RANGE, yet every index is in range");
+    let counts = tbasis_report::from(tbasis::Report::default());
+    assert_eq!(
+        (describe_report(report), report.failed_triangle),
+        (describe_report(&counts), first),
+        "INDEX_OUT_OF_RANGE: the report is not zero counts and the first bad triangle"
+    );
 }
 
 /// The report's counts add up, and say what the header says they say.
@@ -514,6 +608,12 @@ fn check_report(plan: &Plan, status: tbasis_status, report: &tbasis_report, tria
     if policy != TBASIS_DEGENERATE_INHERIT {
         assert_eq!(r.inherited_vertices, 0, "{context}: inherited_vertices without INHERIT");
     }
+    let failed = if status == TBASIS_ERROR_DEGENERATE_UV {
+        r.first_degenerate_triangle
+    } else {
+        usize::MAX
+    };
+    assert_eq!(r.failed_triangle, failed, "{context}: failed_triangle");
     if status == TBASIS_ERROR_DEGENERATE_UV {
         assert!(
             r.degenerate_triangles > 0,

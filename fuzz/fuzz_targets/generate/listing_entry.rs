@@ -4,7 +4,8 @@
 use core::ffi::c_long;
 use core::ptr;
 
-use tbasis::ffi::*;
+use crate::ffi::*;
+use crate::status::*;
 
 use crate::arena::{bit, fill_vectors, first_change_outside, vec_at, Buf};
 use crate::call::{check_status, Expect};

@@ -3,7 +3,7 @@
 //! SKIP, INHERIT and REJECT, the same bits wherever mikktspace.c's frame is usable and a valid
 //! frame with mikktspace.c's sign wherever it is not; per vertex, the first corner's frame.
 
-use tbasis::ffi::{tbasis_report, TBASIS_DEGENERATE_LEGACY};
+use crate::ffi::tbasis_report;
 use tbasis::{generate, generate_corners, DegeneratePolicy, Options, Output, StridedMut};
 
 use crate::call::describe_report;
@@ -210,12 +210,8 @@ pub fn check(mesh: &Packed, threads: &[u32]) {
     for flip_v in [false, true] {
         let mut first: Option<(Vec<[f32; 4]>, tbasis_report)> = None;
         for &threads in threads {
-            let options = Options {
-                flip_v,
-                threads,
-                ..Options::mikktspace()
-            };
-            assert_eq!(options.degenerate_policy as u32, TBASIS_DEGENERATE_LEGACY);
+            let options = Options::mikktspace().with_flip_v(flip_v).with_threads(threads);
+            assert_eq!(options.degenerate_policy, DegeneratePolicy::Legacy);
             let (corners, report) = our_corners(mesh, &options);
             match &first {
                 Some((one, _)) => assert!(bits(one) == bits(&corners), "{options:?}: bits differ from threads=1"),
@@ -229,16 +225,9 @@ pub fn check(mesh: &Packed, threads: &[u32]) {
         let Some((corners, report)) = first else {
             return;
         };
-        let options = Options {
-            flip_v,
-            threads: threads[0],
-            ..Options::mikktspace()
-        };
+        let options = Options::mikktspace().with_flip_v(flip_v).with_threads(threads[0]);
         let mut tangents = vec![[f32::NAN; 4]; mesh.vertex_count()];
-        let mut output = Output {
-            tangents: StridedMut::from_slice(&mut tangents),
-            bitangents: None,
-        };
+        let mut output = Output::new(&mut tangents[..]);
         let vertex_report = generate(&mesh.mesh(), &options, &mut output)
             .unwrap_or_else(|e| panic!("generate refused a valid mesh with {options:?}: {e:?}"));
         vertex_frames(mesh, &options, &tangents, &corners, "generate");

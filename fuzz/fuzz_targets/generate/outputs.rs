@@ -2,8 +2,9 @@
 //! frames of `tbasis_generate_corners`, each against what the header promises for its method and
 //! policy.
 
-use tbasis::ffi::*;
-use tbasis::Options;
+use tbasis::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
+
+use crate::ffi::*;
 
 use crate::arena::vec_at;
 use crate::call::describe_report;
@@ -13,13 +14,46 @@ use crate::mikktspace;
 use crate::packed::Packed;
 use crate::plan::{Plan, BIT, NRM, POS, TAN, UV};
 
-/// The options of the plan's call, as the Rust API takes them (the call succeeded: they are valid).
-fn options(plan: &Plan) -> Options {
+/// The options of the plan's call, as the Rust API takes them (the call succeeded or refused the
+/// mesh with DEGENERATE_UV: they are valid). The codes are mapped as the header defines them, the
+/// method and policy 0 resolved by the plan, not by the library's own mapping.
+pub fn options(plan: &Plan) -> Options {
     if plan.options_null {
         return Options::default();
     }
-    Options::from_codes(plan.method, plan.policy, plan.flags, plan.threshold, plan.threads)
-        .expect("the call accepted these options")
+    let method = match plan.resolved_method() {
+        TBASIS_METHOD_LENGYEL => Method::Lengyel,
+        TBASIS_METHOD_ANGLE => Method::Angle,
+        TBASIS_METHOD_AREA => Method::Area,
+        TBASIS_METHOD_UNIFORM => Method::Uniform,
+        TBASIS_METHOD_MIKKTSPACE => Method::Mikktspace,
+        m => panic!("the call accepted method {m}, which the harness does not know"),
+    };
+    let policy = match plan.resolved_policy() {
+        TBASIS_DEGENERATE_LEGACY => DegeneratePolicy::Legacy,
+        TBASIS_DEGENERATE_SKIP => DegeneratePolicy::Skip,
+        TBASIS_DEGENERATE_INHERIT => DegeneratePolicy::Inherit,
+        TBASIS_DEGENERATE_REJECT => DegeneratePolicy::Reject,
+        p => panic!("the call accepted policy {p}, which the harness does not know"),
+    };
+    assert_eq!(
+        plan.flags & !TBASIS_FLAG_FLIP_V,
+        0,
+        "the call accepted flags {:#x}",
+        plan.flags
+    );
+    // 0 (or -0) means the default threshold.
+    let threshold = if plan.threshold == 0.0 {
+        DEFAULT_DEGENERATE_THRESHOLD
+    } else {
+        plan.threshold
+    };
+    Options::default()
+        .with_method(method)
+        .with_policy(policy)
+        .with_flip_v(plan.flip_v())
+        .with_threads(plan.threads)
+        .with_degenerate_threshold(threshold)
 }
 
 /// `tbasis_generate`: LENGYEL+LEGACY has the listing's bits, MIKKTSPACE each vertex its first
@@ -137,10 +171,7 @@ pub fn check_corner_outputs(plan: &Plan, before: &[u8], after: &[u8], report: Op
     }
     // The same mesh and options per vertex, through the Rust API.
     let mut vertices = vec![[f32::NAN; 4]; plan.vertex_count];
-    let mut output = tbasis::Output {
-        tangents: tbasis::StridedMut::from_slice(&mut vertices),
-        bitangents: None,
-    };
+    let mut output = tbasis::Output::new(&mut vertices[..]);
     let vertex_report = tbasis::generate(&mesh.mesh(), &options, &mut output)
         .unwrap_or_else(|e| panic!("{what} succeeded, tbasis::generate failed: {e:?}"));
     let vertex_report = tbasis_report::from(vertex_report);

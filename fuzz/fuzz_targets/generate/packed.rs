@@ -3,7 +3,7 @@
 
 use std::cell::OnceCell;
 
-use tbasis::{Indices, Mesh, Strided};
+use tbasis::Mesh;
 
 use crate::arena::{vec_at, Buf};
 use crate::mikktspace_reference::reference_corners;
@@ -107,15 +107,14 @@ impl Packed {
     }
 
     pub fn mesh(&self) -> Mesh<'_> {
-        Mesh {
-            positions: Strided::from_slice(&self.positions),
-            normals: Strided::from_slice(&self.normals),
-            texcoords: self.texcoords.as_deref().map(Strided::from_slice),
-            indices: self
-                .indices
-                .as_deref()
-                .map_or(Indices::None, |i| Indices::U32(Strided::from_slice(i))),
+        let mut mesh = Mesh::new(&self.positions[..], &self.normals[..]);
+        if let Some(texcoords) = &self.texcoords {
+            mesh = mesh.with_texcoords(&texcoords[..]);
         }
+        if let Some(indices) = &self.indices {
+            mesh = mesh.with_indices(&indices[..]);
+        }
+        mesh
     }
 
     /// mikktspace.c's frame per corner (`None` without texture coordinates).

@@ -4,7 +4,7 @@
 
 use core::ptr;
 
-use tbasis::ffi::*;
+use crate::ffi::*;
 
 use crate::arena::{f32_at, fill_vectors, Buf};
 use crate::call::debugging;
