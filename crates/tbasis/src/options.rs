@@ -125,7 +125,7 @@ impl DegeneratePolicy {
 ///
 /// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
 /// # let normals = [[0.0, 0.0, 1.0f32]; 3];
-/// // A sliver in UV space: aspect ratio about 500 000:1, quality about 2.3e-6.
+/// // A sliver in UV space, of quality q = 2*sqrt(3) * 1e-6 / 1.5, about 2.3e-6.
 /// let sliver = [[0.0, 0.0], [1.0, 0.0], [0.5, 1e-6]];
 /// let mesh = Mesh::new(&positions, &normals).with_texcoords(&sliver);
 /// let mut tangents = [[0.0f32; 4]; 3];
@@ -294,7 +294,7 @@ impl Options {
     ///
     /// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
     /// # let normals = [[0.0, 0.0, 1.0f32]; 3];
-    /// // A sliver in UV space: aspect ratio about 500 000:1, quality about 2.3e-6.
+    /// // A sliver in UV space, of quality q = 2*sqrt(3) * 1e-6 / 1.5, about 2.3e-6.
     /// let sliver = [[0.0, 0.0], [1.0, 0.0], [0.5, 1e-6]];
     /// let mesh = Mesh::new(&positions, &normals).with_texcoords(&sliver);
     /// let mut tangents = [[0.0f32; 4]; 3];
