@@ -334,13 +334,12 @@ impl<'a> Mesh<'a> {
         let vertex_count = self.vertex_count();
         let corners = self.corner_count() - self.corner_count() % 3;
         let bad = (0..corners).find(|&c| self.indices.corner(c) >= vertex_count);
-        match bad {
-            Some(c) => Error::IndexOutOfRange {
-                triangle: c / 3,
-                index: self.indices.corner(c),
-                vertex_count,
-            },
-            None => Error::SizeOverflow,
+        // Only called after a corner was found out of range, so `bad` is always some corner.
+        let c = bad.unwrap_or_default();
+        Error::IndexOutOfRange {
+            triangle: c / 3,
+            index: self.indices.corner(c),
+            vertex_count,
         }
     }
 }
