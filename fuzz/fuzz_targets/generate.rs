@@ -1,20 +1,36 @@
-//! Fuzzes the C ABI: `tbasis_generate`, `tbasis_generate_corners` (and, for some inputs,
-//! `tbasis_calculate_tangent_array`), the Rust API against it, and method MIKKTSPACE against
-//! mikktspace.c itself. The C library (`tbasis-ffi`) builds no rlib: its boundary, `src/ffi.rs`
-//! and `src/status.rs`, is compiled into this binary as the modules `ffi` and `status`.
+//! Fuzzes the C ABI, every entry point of `include/tbasis.h` but `tbasis_version` (compiled in
+//! here, it carries this crate's version): `tbasis_generate`, `tbasis_generate_corners` (and, for
+//! some inputs, `tbasis_calculate_tangent_array`), `tbasis_scratch_size`, `tbasis_split_corners`,
+//! `tbasis_copy_split_vertices`, `tbasis_to_tangent_space`, `tbasis_from_tangent_space` and
+//! `tbasis_status_string`; the Rust API against it; and method MIKKTSPACE against mikktspace.c
+//! itself. The C library (`tbasis-ffi`) builds no rlib: its boundary, `src/ffi.rs` and
+//! `src/status.rs`, is compiled into this binary as the modules `ffi` and `status`.
 //!
-//! The input bytes choose a vertex count, strides, where each buffer sits inside one byte arena
-//! (unaligned, interleaved, overlapping on purpose), which pointers are NULL, the indices, the
-//! options, an optional caller scratch, and the float contents (`generate/plan.rs`). Every pointer
-//! stays inside memory this harness owns, and every span the library may touch lies inside it, so
-//! a sanitizer report or a failed check is the library's fault. Each input makes a
-//! `tbasis_generate` call, then a `tbasis_generate_corners` call on the same mesh whose options,
-//! per-corner tangent buffer and scratch come from the bytes left over (none left: the same
-//! options, the tangents after the inputs). After each call the harness checks, independently of
-//! the library's code (`generate/call.rs`, `generate/outputs.rs`):
+//! The input is read through `arbitrary`'s `Unstructured` (`generate/input.rs`): derived
+//! `Arbitrary` types for the parts of fixed shape (the NULL pointers, option codes, layouts of the
+//! smaller calls), `Unstructured` directly where a value depends on earlier ones. Past its end it
+//! reads zeros, and every choice puts its ordinary case first, so a short input stays ordinary.
+//! It chooses a vertex count (mostly up to 64, about one input in fifty up to 4096, rarely one
+//! whose spans overflow), strides, where each buffer sits inside one byte arena (unaligned,
+//! interleaved, overlapping on purpose), which pointers are NULL, the indices (drawn one by one,
+//! near each other, or a grid), the options, an optional caller scratch, and the float contents
+//! (small values, unit vectors, edge cases, any bits, a palette of a few vectors, or a grid with
+//! mirror seams: a large mesh from a few bytes) (`generate/plan.rs`). Every pointer stays inside
+//! memory this harness owns, and every span the library may touch lies inside it, so a sanitizer
+//! report or a failed check is the library's fault.
 //!
-//! - the status is one the library defines (`status.rs`, each with its message) and one the
-//!   description allows (an error the inputs really contain; OK when they contain none);
+//! Each input first makes a `tbasis_status_string` probe of any value and a pair of tangent-space
+//! transforms (`generate/transform.rs`), then a `tbasis_generate` call, then a
+//! `tbasis_generate_corners` call on the same mesh whose options, per-corner tangent buffer and
+//! scratch come from the bytes left over (none left: the same options, the tangents after the
+//! inputs), then `tbasis_split_corners` on that call's tangents when it succeeded and on tangents
+//! drawn from the bytes, each successful split followed by `tbasis_copy_split_vertices`
+//! (`generate/split.rs`, `generate/copy_split.rs`). After each call the harness checks,
+//! independently of the library's code (`generate/call.rs`, `generate/outputs.rs`,
+//! `generate/statuses.rs`):
+//!
+//! - the status is one the library defines, `tbasis_status_string` gives its message, and it is
+//!   one the description allows (an error the inputs really contain; OK when they contain none);
 //! - on an error, no byte changed (the caller scratch excepted: it is working memory), and the
 //!   report is untouched unless the status is DEGENERATE_UV or INDEX_OUT_OF_RANGE (then it holds
 //!   zero counts and the first triangle with an index out of range in `failed_triangle`);
@@ -34,7 +50,20 @@
 //!   gives the same bits and report, or the same refusal: `generate` and `generate_corners`, the
 //!   same in one `ScratchBuffer` reused by both calls of the input, and, per vertex,
 //!   `generate_interleaved` over an interleaved copy of the mesh (a layout the bytes pick), which
-//!   writes no byte but the tangents; `scratch_size_for` agrees with `tbasis_scratch_size`.
+//!   writes no byte but the tangents; `scratch_size_for` agrees with `tbasis_scratch_size`;
+//! - `tbasis_split_corners`: on OK only the new indices, the first `*appended_count` sources and
+//!   the count written; corners of a vertex share an output vertex exactly when their tangents
+//!   have the same bits, the first tangent of each vertex keeps its index, further ones append
+//!   vertices in order of first appearance whose sources point back; the same split as
+//!   `tbasis::split_corners`; after method MIKKTSPACE, as many vertices split as the report's
+//!   `split_vertices`;
+//! - `tbasis_copy_split_vertices`: on OK exactly the appended elements written, each a copy of its
+//!   source element, the same bytes as `tbasis::copy_split_vertices`;
+//! - `tbasis_to_tangent_space`, `tbasis_from_tangent_space` (on frames and directions from the
+//!   bytes and on the first frames `tbasis_generate` wrote): on OK a finite result, the only bytes
+//!   written, equal to the Rust API's whatever input the result overlaps; the same frames
+//!   accepted by both; on well-conditioned frames each undoes the other within a rounding bound
+//!   derived in `generate/transform.rs`.
 //!
 //! Then, whenever the bytes make a mesh the library must accept (whatever the calls above were
 //! asked), method MIKKTSPACE with policy LEGACY, `flip_v` off and on, one and two threads, runs
@@ -45,13 +74,16 @@
 //! those of the corners. The same runs on two meshes made from the decoded one: every value
 //! snapped to one of a few (equal corners, shared edges, collapsed triangles and exact mirror
 //! seams become common), and its corners unindexed. The library starts a worker per 16384
-//! triangles at most, far beyond the fuzzer's meshes: the thread counts only check that asking
-//! for a second thread changes nothing.
+//! triangles (method MIKKTSPACE) or 32768 vertices at most, beyond the fuzzer's meshes (8192
+//! triangles, 4096 vertices): the thread counts only check that asking for a second thread
+//! changes nothing.
 //!
 //! `FUZZ_DEBUG=1` prints the decoded calls, the mesh and the reports of each input run; a
 //! mismatch against mikktspace.c prints the mesh, bits included.
 //!
-//! `fuzz/regressions/` holds the inputs of past findings (replayed by `.ci/fuzz.sh`), all fixed:
+//! `fuzz/regressions/` holds the inputs of past findings (replayed by `.ci/fuzz.sh`), all fixed.
+//! They were made for the byte format this target read before it used `arbitrary`; they no longer
+//! rebuild the cases below and are ordinary seeds now (each must still pass):
 //! - `empty-mesh-unaligned-scratch`: no vertices, a non-NULL 0-byte scratch at an address 1 mod 4
 //!   was refused with SCRATCH_TOO_SMALL;
 //! - `tangent-not-orthogonal-near-normal`: a tangent sum nearly along the normal left the tangent
@@ -71,6 +103,8 @@
 mod arena;
 #[path = "generate/call.rs"]
 mod call;
+#[path = "generate/copy_split.rs"]
+mod copy_split;
 // The C boundary (the `tbasis-ffi` crate has no rlib): its sources, compiled into this binary.
 // Formatted and linted as part of the C crate; `cargo fmt` here leaves it (and status.rs) alone.
 // Its features (`fault-injection`, for the C crate's tests) are never on here.
@@ -88,6 +122,8 @@ mod listing;
 mod listing_entry;
 #[path = "generate/mikktspace.rs"]
 mod mikktspace;
+#[path = "generate/mikktspace_cost.rs"]
+mod mikktspace_cost;
 #[allow(dead_code)]
 #[path = "../../tests/common/mikktspace_reference.rs"]
 mod mikktspace_reference;
@@ -99,26 +135,54 @@ mod packed;
 mod plan;
 #[path = "generate/rust_api.rs"]
 mod rust_api;
+#[path = "generate/split.rs"]
+mod split;
 #[allow(non_camel_case_types, dead_code)]
 #[rustfmt::skip]
 #[path = "../../src/status.rs"]
 mod status;
+#[path = "generate/statuses.rs"]
+mod statuses;
+#[path = "generate/transform.rs"]
+mod transform;
 
+use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use tbasis::ScratchBuffer;
 
-use crate::input::Input;
+use crate::arena::vec_at;
+use crate::input::one_in;
 use crate::packed::Packed;
-use crate::plan::{decode_corners_plan, decode_plan, write_inputs, ARENA};
+use crate::plan::{decode_corners_plan, decode_plan, write_inputs, TAN};
+use crate::status::TBASIS_OK;
 
-fuzz_target!(|data: &[u8]| run(data));
+fuzz_target!(|data: &[u8]| {
+    // `Unstructured` reads zeros past the end, so an input is never refused for being short.
+    if let Err(error) = run(&mut Unstructured::new(data)) {
+        if call::debugging() {
+            eprintln!("input ends the run early: {error}");
+        }
+    }
+});
 
-fn run(data: &[u8]) {
-    let mut input = Input { data, pos: 0 };
-    let also_listing = input.u8() % 4 == 3;
-    let plan = decode_plan(&mut input);
-    let mut arena = vec![plan.arena_fill; ARENA];
-    write_inputs(&mut input, &plan, &mut arena);
+/// Frames of a successful `tbasis_generate` call that also go through the tangent-space
+/// transforms.
+const GENERATED_FRAMES: usize = 4;
+
+fn run(u: &mut Unstructured) -> arbitrary::Result<()> {
+    // The cheap, fixed-size checks first, so the mesh gets whatever bytes are left.
+    let status_probe = if one_in::<4>(u)? {
+        u32::arbitrary(u)?
+    } else {
+        u.int_in_range(0..=31)?
+    };
+    statuses::check_any_status_string(status_probe);
+    transform::check(u)?;
+
+    let also_listing = one_in::<4>(u)?;
+    let plan = decode_plan(u)?;
+    let mut arena = vec![plan.arena_fill; plan.arena];
+    write_inputs(u, &plan, &mut arena)?;
     let pristine = arena.clone();
     let mesh = Packed::of(&plan, &pristine);
     if let (true, Some(mesh)) = (call::debugging(), &mesh) {
@@ -127,21 +191,30 @@ fn run(data: &[u8]) {
     let mut scratch_arena = vec![plan.scratch_fill; plan.scratch.arena_len];
     // Reused by both calls' Rust API checks, so the second starts with what the first left.
     let mut rust_scratch = ScratchBuffer::new();
-    call::check_call(&plan, &mut arena, &mut scratch_arena, mesh.as_ref(), &mut rust_scratch);
+    let (status, _) = call::check_call(&plan, &mut arena, &mut scratch_arena, mesh.as_ref(), &mut rust_scratch);
+    if let (TBASIS_OK, Some(mesh)) = (status, &mesh) {
+        let frames = GENERATED_FRAMES.min(plan.vertex_count);
+        let tangents: Vec<[f32; 4]> = (0..frames).map(|i| vec_at(&arena, plan.bufs[TAN].element(i))).collect();
+        transform::check_generated(&mesh.normals, &tangents, &mesh.positions);
+    }
     if also_listing {
-        listing_entry::check_listing_entry(&mut input);
+        listing_entry::check_listing_entry(u)?;
     }
 
-    let corners = decode_corners_plan(&mut input, &plan);
-    let mut arena = pristine;
+    let corners = decode_corners_plan(u, &plan)?;
+    let mut arena = pristine.clone();
     let mut scratch_arena = vec![corners.scratch_fill; corners.scratch.arena_len];
-    call::check_call(
+    let (status, report) = call::check_call(
         &corners,
         &mut arena,
         &mut scratch_arena,
         mesh.as_ref(),
         &mut rust_scratch,
     );
+    if status == TBASIS_OK {
+        split::check_generated(u, &corners, &arena, report.as_ref())?;
+    }
+    split::check_arbitrary(u, &plan, &pristine)?;
 
     if let Some(mesh) = &mesh {
         mikktspace::check(mesh, &[1, 2]);
@@ -153,4 +226,5 @@ fn run(data: &[u8]) {
             mikktspace::check(&variant, &[1]);
         }
     }
+    Ok(())
 }

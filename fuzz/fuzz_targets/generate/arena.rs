@@ -5,7 +5,9 @@ use crate::status::{
     tbasis_status, TBASIS_ERROR_INVALID_STRIDE, TBASIS_ERROR_NULL_POINTER, TBASIS_ERROR_SIZE_OVERFLOW,
 };
 
-use crate::input::{vector, Encoding, Input};
+use arbitrary::{Result, Unstructured};
+
+use crate::input::{Attribute, Encoding, Vectors};
 
 /// One strided buffer in an arena: `count` elements of `size` bytes, `stride` apart from `base`.
 #[derive(Clone, Copy, Debug, Default)]
@@ -93,7 +95,7 @@ pub fn bit(status: tbasis_status) -> u32 {
     1u32 << status.min(31)
 }
 
-fn put_f32(bytes: &mut [u8], at: usize, value: f32) {
+pub fn put_f32(bytes: &mut [u8], at: usize, value: f32) {
     bytes[at..at + 4].copy_from_slice(&value.to_le_bytes());
 }
 
@@ -106,16 +108,24 @@ pub fn vec_at<const N: usize>(bytes: &[u8], at: usize) -> [f32; N] {
 }
 
 /// Writes `count` vectors of `N` floats into `buf` (elements may overlap when the stride is short).
-pub fn fill_vectors<const N: usize>(input: &mut Input, encoding: Encoding, buf: &Buf, len: usize, arena: &mut [u8]) {
-    if !buf.placed(len) {
-        return;
+pub fn fill_vectors<const N: usize>(
+    u: &mut Unstructured,
+    encoding: Encoding,
+    attribute: Attribute,
+    buf: &Buf,
+    arena: &mut [u8],
+) -> Result<()> {
+    if !buf.placed(arena.len()) {
+        return Ok(());
     }
+    let mut vectors = Vectors::<N>::new(u, encoding, attribute)?;
     for i in 0..buf.count {
-        let v: [f32; N] = vector(input, encoding);
+        let v: [f32; N] = vectors.next(u, i)?;
         for (k, x) in v.into_iter().enumerate() {
             put_f32(arena, buf.element(i) + 4 * k, x);
         }
     }
+    Ok(())
 }
 
 /// The first byte outside the `writable` ranges that differs, if any.

@@ -2,7 +2,7 @@
 //! and checked: the status against what the inputs call for, every byte the call could touch,
 //! the report, then (on success) the outputs.
 
-use core::ffi::{c_void, CStr};
+use core::ffi::c_void;
 use core::mem::size_of;
 use core::ptr;
 
@@ -16,10 +16,11 @@ use crate::frames::length;
 use crate::outputs::{check_corner_outputs, check_vertex_outputs, options};
 use crate::packed::Packed;
 use crate::plan::{
-    assert_harness_sound, describe, read_indices, triangles_of, Footprints, Plan, ARENA, BIT, IDX, NAMES, NRM, POS,
-    TAN, UV,
+    assert_harness_sound, describe, mesh_descriptor, mesh_violations, read_indices, triangles_of, Footprints, Plan,
+    BIT, IDX, NAMES, NRM, TAN, UV,
 };
 use crate::rust_api::{self, CResult};
+use crate::statuses::{check_status, Expect};
 
 const REPORT_BYTES: usize = size_of::<tbasis_report>();
 
@@ -27,13 +28,6 @@ const REPORT_BYTES: usize = size_of::<tbasis_report>();
 const REPORT_BUFFER: usize = REPORT_BYTES + 16;
 
 const REPORT_FILL: u8 = 0x5a;
-
-/// The statuses the inputs call for: `hard` are certain errors, `soft` are ones the header is
-/// ambiguous about (the call may also succeed).
-pub struct Expect {
-    pub hard: u32,
-    pub soft: u32,
-}
 
 fn expect_call(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Expect {
     let mut hard = 0;
@@ -59,41 +53,17 @@ fn expect_call(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Expect {
         }
     }
     let b = &plan.bufs;
-    let vc = plan.vertex_count;
-    hard |= b[POS].violations() | b[NRM].violations() | b[TAN].violations();
+    hard |= mesh_violations(plan, arena) | b[TAN].violations();
     // The header lists the tangents as required; with no elements the call may accept NULL.
     if b[TAN].null && plan.outputs() == 0 {
         soft |= bit(TBASIS_ERROR_NULL_POINTER);
     }
-    if !b[UV].null {
-        hard |= b[UV].violations();
-    } else if plan.resolved_policy() == TBASIS_DEGENERATE_LEGACY || plan.mikktspace() {
+    if b[UV].null && (plan.resolved_policy() == TBASIS_DEGENERATE_LEGACY || plan.mikktspace()) {
         // The listing and mikktspace.c both need texture coordinates.
         hard |= bit(TBASIS_ERROR_NULL_POINTER);
     }
     if !b[BIT].null {
         hard |= b[BIT].violations();
-    }
-    if !b[IDX].null {
-        if !plan.index_type_valid() {
-            hard |= bit(TBASIS_ERROR_INVALID_INDEX_TYPE);
-        } else {
-            hard |= b[IDX].violations();
-            if b[IDX].count % 3 != 0 {
-                hard |= bit(TBASIS_ERROR_INVALID_INDEX_COUNT);
-            } else if b[IDX].placed(ARENA) && read_indices(plan, arena).iter().any(|&i| i >= vc) {
-                hard |= bit(TBASIS_ERROR_INDEX_OUT_OF_RANGE);
-            }
-        }
-    } else {
-        // `index_count` "must be 0 when indices is NULL"; NULL_POINTER covers "an index buffer
-        // whose count is nonzero".
-        if b[IDX].count != 0 {
-            hard |= bit(TBASIS_ERROR_NULL_POINTER);
-        }
-        if vc % 3 != 0 {
-            hard |= bit(TBASIS_ERROR_INVALID_INDEX_COUNT);
-        }
     }
     if plan.uses_scratch() {
         let claimed = plan.scratch.claimed;
@@ -207,18 +177,7 @@ fn call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], with_scratch: b
         }
     };
     let b = &plan.bufs;
-    let mesh = tbasis_mesh {
-        vertex_count: plan.vertex_count,
-        positions: at(&b[POS]),
-        positions_stride: b[POS].stride,
-        normals: at(&b[NRM]),
-        normals_stride: b[NRM].stride,
-        texcoords: at(&b[UV]),
-        texcoords_stride: b[UV].stride,
-        indices: at(&b[IDX]),
-        index_count: b[IDX].count,
-        index_type: plan.index_type,
-    };
+    let mesh = mesh_descriptor(plan, arena_ptr);
     let scratch = if plan.scratch.null || !with_scratch {
         ptr::null_mut()
     } else if plan.scratch.in_main {
@@ -273,62 +232,6 @@ fn call(plan: &Plan, arena: &mut [u8], scratch_arena: &mut [u8], with_scratch: b
     (status, report_bytes)
 }
 
-/// The statuses the C library defines: every value `status.rs` describes (`message_nul`), so the
-/// list grows with the library's own.
-fn known_statuses() -> &'static [tbasis_status] {
-    static KNOWN: std::sync::OnceLock<Vec<tbasis_status>> = std::sync::OnceLock::new();
-    KNOWN.get_or_init(|| {
-        let known: Vec<tbasis_status> = (0..=u8::MAX.into()).filter(|&s| message_nul(s).is_some()).collect();
-        for &s in &known {
-            // SAFETY: the library returns a static NUL-terminated string for every value.
-            let text = unsafe { CStr::from_ptr(tbasis_status_string(s)) };
-            let message = message_nul(s).unwrap();
-            assert_eq!(
-                text.to_bytes_with_nul(),
-                message.as_bytes(),
-                "tbasis_status_string({s}) is not its message"
-            );
-            assert!(!text.to_bytes().is_empty(), "empty status string for {s}");
-        }
-        known
-    })
-}
-
-fn check_status_string(status: tbasis_status) {
-    assert!(
-        known_statuses().contains(&status),
-        "status {status} is none the library defines ({:?})",
-        known_statuses()
-    );
-    // SAFETY: the library returns a static NUL-terminated string for every value.
-    let text = unsafe { CStr::from_ptr(tbasis_status_string(status)) };
-    assert!(!text.to_bytes().is_empty(), "empty status string for {status}");
-}
-
-/// `status` is allowed by `expect`.
-pub fn check_status(status: tbasis_status, expect: &Expect, policy: u32, what: &str) {
-    check_status_string(status);
-    assert_ne!(status, TBASIS_ERROR_INTERNAL, "{what}: TBASIS_ERROR_INTERNAL");
-    match status {
-        TBASIS_OK => assert!(
-            expect.hard == 0,
-            "{what}: TBASIS_OK, but the inputs call for statuses {:#x}",
-            expect.hard
-        ),
-        TBASIS_ERROR_DEGENERATE_UV => assert!(
-            expect.hard == 0 && policy == TBASIS_DEGENERATE_REJECT,
-            "{what}: DEGENERATE_UV with policy {policy}, statuses due {:#x}",
-            expect.hard
-        ),
-        e => assert!(
-            e < 32 && (expect.hard | expect.soft) & bit(e) != 0,
-            "{what}: status {e}, but the inputs call for {:#x} (or {:#x})",
-            expect.hard,
-            expect.soft
-        ),
-    }
-}
-
 /// `FUZZ_DEBUG=1` prints each decoded plan, to read a reproduced failure.
 pub fn debugging() -> bool {
     static DEBUG: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
@@ -347,13 +250,14 @@ fn name(plan: &Plan) -> &'static str {
 /// Makes the plan's call over `arena` and checks everything about it; `mesh` is the mesh as the
 /// library reads it, when it can.
 /// `rust_scratch` is the `ScratchBuffer` every call of the input reuses (`generate/rust_api.rs`).
+/// Returns the status and the report the call filled (none when NULL or not filled).
 pub fn check_call(
     plan: &Plan,
     arena: &mut [u8],
     scratch_arena: &mut [u8],
     mesh: Option<&Packed>,
     rust_scratch: &mut ScratchBuffer,
-) {
+) -> (tbasis_status, Option<tbasis_report>) {
     if debugging() {
         eprintln!("{plan:#?}");
     }
@@ -379,7 +283,7 @@ pub fn check_call(
     let mut writable = Vec::new();
     if ok {
         for k in [TAN, BIT] {
-            if plan.bufs[k].placed(ARENA) {
+            if plan.bufs[k].placed(plan.arena) {
                 writable.extend(plan.bufs[k].ranges());
             }
         }
@@ -435,6 +339,7 @@ pub fn check_call(
             }
         }
     }
+    (status, report)
 }
 
 /// The Rust API on the same mesh and options gives what the call gave (`ok`: its outputs in
@@ -474,7 +379,7 @@ fn check_without_scratch(plan: &Plan, before: &[u8], with_scratch: &[u8], report
         "the call succeeds with caller scratch but not without"
     );
     for k in [TAN, BIT] {
-        if !plan.bufs[k].placed(ARENA) {
+        if !plan.bufs[k].placed(plan.arena) {
             continue;
         }
         for i in 0..plan.outputs() {
@@ -521,7 +426,7 @@ fn check_report_bytes(plan: &Plan, status: tbasis_status, bytes: &[u8]) -> Optio
 /// count in `failed_triangle`, and every count is 0.
 fn check_index_report(plan: &Plan, report: &tbasis_report, arena: &[u8]) {
     assert!(
-        !plan.bufs[IDX].null && plan.bufs[IDX].placed(ARENA),
+        !plan.bufs[IDX].null && plan.bufs[IDX].placed(plan.arena),
         "INDEX_OUT_OF_RANGE without indices the harness can read"
     );
     let indices = read_indices(plan, arena);

@@ -7,12 +7,14 @@ use core::ptr;
 use crate::ffi::*;
 use crate::status::*;
 
+use arbitrary::{Arbitrary, Result, Unstructured};
+
 use crate::arena::{bit, fill_vectors, first_change_outside, vec_at, Buf};
-use crate::call::{check_status, Expect};
 use crate::frames::same;
-use crate::input::{index_value, pick_encoding, shuffle, Input};
+use crate::input::{below, index_value, nudge, one_in, pick_encoding, shuffle, weighted, Attribute};
 use crate::listing::listing_tangents;
-use crate::plan::MAX_VERTICES;
+use crate::plan::SMALL_VERTICES;
+use crate::statuses::{check_status, Expect};
 
 /// Bytes of the arena of a `tbasis_calculate_tangent_array` call.
 const LISTING_ARENA: usize = 4 * 1024;
@@ -44,30 +46,30 @@ const L_TRIANGLE: usize = 3;
 const L_TANGENT: usize = 4;
 
 /// A `long` count: usually small, sometimes negative, sometimes so large every span overflows.
-fn long_count(input: &mut Input, small_max: u8, huge_bit: u32) -> c_long {
-    match input.u8() % 16 {
-        0 => {
-            if input.rare(4) {
+fn long_count(u: &mut Unstructured, small_max: u8, huge_bit: u32) -> Result<c_long> {
+    Ok(match weighted(u, &[14, 1, 1])? {
+        0 => c_long::from(u.int_in_range(0..=small_max)?),
+        1 => {
+            if one_in::<4>(u)? {
                 c_long::MIN
             } else {
-                -1 - c_long::from(input.u32() >> 1)
+                -1 - c_long::from(u32::arbitrary(u)? >> 1)
             }
         }
-        1 => ((1u64 << huge_bit) | (input.u64() & c_long::MAX as u64)) as c_long,
-        _ => c_long::from(input.u8() % (small_max + 1)),
-    }
+        _ => ((1u64 << huge_bit) | (u64::arbitrary(u)? & c_long::MAX as u64)) as c_long,
+    })
 }
 
-pub fn check_listing_entry(input: &mut Input) {
+pub fn check_listing_entry(u: &mut Unstructured) -> Result<()> {
     // Huge vertex counts start at 2^60 (12-byte spans overflow), triangle counts at 2^61.
-    let vertex_count = long_count(input, MAX_VERTICES as u8, 60);
-    let triangle_count = long_count(input, 32, 61);
+    let vertex_count = long_count(u, SMALL_VERTICES as u8, 60)?;
+    let triangle_count = long_count(u, 32, 61)?;
     let vc = usize::try_from(vertex_count).ok();
     let ic = usize::try_from(triangle_count).ok().and_then(|t| t.checked_mul(3));
     let mut bufs = [Buf::default(); 5];
     for (k, size) in [12, 12, 8, 2, 16].into_iter().enumerate() {
         bufs[k] = Buf {
-            null: input.rare(32),
+            null: one_in::<32>(u)?,
             base: 0,
             stride: size,
             size,
@@ -79,30 +81,30 @@ pub fn check_listing_entry(input: &mut Input) {
         };
     }
     let mut order = [L_VERTEX, L_NORMAL, L_TEXCOORD, L_TRIANGLE, L_TANGENT];
-    shuffle(input, &mut order);
-    let mut cursor = input.below(8);
+    shuffle(u, &mut order)?;
+    let mut cursor = below(u, 8)?;
     for k in order {
         bufs[k].base = cursor;
-        cursor += bufs[k].extent().filter(|&e| e <= LISTING_ARENA).unwrap_or(0) + input.u8() as usize % 8;
+        cursor += bufs[k].extent().filter(|&e| e <= LISTING_ARENA).unwrap_or(0) + below(u, 8)?;
     }
-    if input.rare(4) {
-        let source = input.below(4);
-        let delta = (input.u8() as i8 as isize) % 20;
+    if one_in::<4>(u)? {
+        let source = below(u, 4)?;
+        let delta = nudge(u, 20)?;
         bufs[L_TANGENT].base = (bufs[source].base as isize + delta).clamp(0, LISTING_ARENA as isize - 1) as usize;
     }
     for b in &mut bufs {
         b.clamp_into(LISTING_ARENA);
     }
 
-    let mut arena = vec![input.u8(); LISTING_ARENA];
-    let encodings = [pick_encoding(input), pick_encoding(input), pick_encoding(input)];
-    fill_vectors::<3>(input, encodings[0], &bufs[L_VERTEX], LISTING_ARENA, &mut arena);
-    fill_vectors::<3>(input, encodings[1], &bufs[L_NORMAL], LISTING_ARENA, &mut arena);
-    fill_vectors::<2>(input, encodings[2], &bufs[L_TEXCOORD], LISTING_ARENA, &mut arena);
+    let mut arena = vec![u8::arbitrary(u)?; LISTING_ARENA];
+    let encodings = [pick_encoding(u)?, pick_encoding(u)?, pick_encoding(u)?];
+    fill_vectors::<3>(u, encodings[0], Attribute::Position, &bufs[L_VERTEX], &mut arena)?;
+    fill_vectors::<3>(u, encodings[1], Attribute::Normal, &bufs[L_NORMAL], &mut arena)?;
+    fill_vectors::<2>(u, encodings[2], Attribute::Texcoord, &bufs[L_TEXCOORD], &mut arena)?;
     let tri = bufs[L_TRIANGLE];
     if tri.placed(LISTING_ARENA) {
         for k in 0..tri.count {
-            let value = index_value(input, vc.unwrap_or(0)) as u16;
+            let value = index_value(u, vc.unwrap_or(0))? as u16;
             arena[tri.element(k)..tri.element(k) + 2].copy_from_slice(&value.to_le_bytes());
         }
     }
@@ -216,4 +218,5 @@ pub fn check_listing_entry(input: &mut Input) {
             );
         }
     }
+    Ok(())
 }

@@ -6,8 +6,9 @@ use std::cell::OnceCell;
 use tbasis::Mesh;
 
 use crate::arena::{vec_at, Buf};
+use crate::mikktspace_cost::reference_cost;
 use crate::mikktspace_reference::reference_corners;
-use crate::plan::{read_indices, Plan, ARENA, IDX, NRM, POS, UV};
+use crate::plan::{read_indices, Plan, IDX, NRM, POS, UV};
 
 pub struct Packed {
     pub positions: Vec<[f32; 3]>,
@@ -18,11 +19,20 @@ pub struct Packed {
     pub indices: Option<Vec<u32>>,
     /// mikktspace.c's corners with `flip_v` off and on, computed when first asked for.
     references: [OnceCell<Vec<[f32; 4]>>; 2],
+    /// Whether mikktspace.c runs on this mesh in reasonable time (`generate/mikktspace_cost.rs`).
+    affordable: OnceCell<bool>,
 }
+
+/// Pair comparisons mikktspace.c may make on one mesh, at most, for the harness to run it: about
+/// 20 ms in an optimized build (a few times that with a sanitizer), for each of the up to ten
+/// runs an input makes. Every mesh of distinct positions stays far below; a mesh of thousands of
+/// corners at one position with other normals or texture coordinates (a large mesh whose
+/// positions ran out of bytes, the snapped variant of a large mesh) goes past it.
+const REFERENCE_BUDGET: u64 = 1 << 20;
 
 /// The buffer's elements, when the library can read them all (none when it is NULL and empty).
 fn elements<const N: usize>(buf: &Buf, arena: &[u8]) -> Option<Vec<[f32; N]>> {
-    let readable = buf.violations() == 0 && (buf.count == 0 || buf.placed(ARENA));
+    let readable = buf.violations() == 0 && (buf.count == 0 || buf.placed(arena.len()));
     readable.then(|| (0..buf.count).map(|i| vec_at(arena, buf.element(i))).collect())
 }
 
@@ -41,7 +51,7 @@ impl Packed {
         let indices = if b[IDX].null {
             (b[IDX].count == 0 && plan.vertex_count % 3 == 0).then_some(None)?
         } else {
-            let readable = plan.index_type_valid() && b[IDX].violations() == 0 && b[IDX].placed(ARENA);
+            let readable = plan.index_type_valid() && b[IDX].violations() == 0 && b[IDX].placed(arena.len());
             let values = readable.then(|| read_indices(plan, arena))?;
             let whole = values.len() % 3 == 0 && values.iter().all(|&i| i < plan.vertex_count);
             whole.then(|| Some(values.into_iter().map(|i| i as u32).collect()))?
@@ -61,6 +71,7 @@ impl Packed {
             texcoords,
             indices,
             references: Default::default(),
+            affordable: OnceCell::new(),
         }
     }
 
@@ -117,9 +128,19 @@ impl Packed {
         mesh
     }
 
-    /// mikktspace.c's frame per corner (`None` without texture coordinates).
+    /// mikktspace.c's frame per corner; `None` without texture coordinates, or when mikktspace.c's
+    /// quadratic steps would take too long on this mesh (`REFERENCE_BUDGET`).
     pub fn reference(&self, flip_v: bool) -> Option<&[[f32; 4]]> {
         let texcoords = self.texcoords.as_deref()?;
+        let affordable = *self.affordable.get_or_init(|| {
+            let positions: Vec<[f32; 3]> = (0..self.corner_count())
+                .map(|c| self.positions[self.corner_vertex(c)])
+                .collect();
+            reference_cost(&positions) <= REFERENCE_BUDGET
+        });
+        if !affordable {
+            return None;
+        }
         let corners = self.references[usize::from(flip_v)].get_or_init(|| {
             // mikktspace.c returns false, writing nothing, only without triangles.
             reference_corners(
