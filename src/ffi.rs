@@ -448,12 +448,7 @@ unsafe fn caller_scratch<'a>(
         .into());
     }
     check_buffer(o.scratch, 1, o.scratch_size, 1)?;
-    let scratch = Footprint {
-        start: o.scratch as usize,
-        stride: 1,
-        size: 1,
-        count: o.scratch_size,
-    };
+    let scratch = Footprint::contiguous(o.scratch as usize, o.scratch_size);
     let mut all = written.to_vec();
     all.push((Buffer::Scratch, Some(scratch)));
     check_written(mesh, &all)?;
@@ -564,12 +559,7 @@ pub unsafe extern "C" fn tbasis_split_corners(
         let mut indices_out = write_view::<u32>(new_indices.cast(), size_of::<u32>(), corners)?;
         let mut sources_out = write_view::<u32>(sources.cast(), size_of::<u32>(), corners)?;
         check_buffer(appended_count.cast(), 1, size_of::<usize>(), 1)?;
-        let count_out = Footprint {
-            start: appended_count as usize,
-            stride: size_of::<usize>(),
-            size: size_of::<usize>(),
-            count: 1,
-        };
+        let count_out = Footprint::contiguous(appended_count as usize, size_of::<usize>());
         let written = [
             (Buffer::Indices, Some(indices_out.footprint())),
             (Buffer::Attribute, Some(sources_out.footprint())),
@@ -635,12 +625,7 @@ pub unsafe extern "C" fn tbasis_copy_split_vertices(
         }
         check_buffer(attribute, stride, total, element_size)?;
         let span = span_bytes(total, stride, element_size)?;
-        let whole_range = Footprint {
-            start: attribute as usize,
-            stride: span,
-            size: span,
-            count: 1,
-        };
+        let whole_range = Footprint::contiguous(attribute as usize, span);
         if whole_range.overlaps(&source_view.footprint()) {
             return Err(Error::Overlap {
                 written: Buffer::Attribute,

@@ -80,12 +80,9 @@ pub(crate) fn generate_into(
 ) -> Result<(), Error> {
     let vertex_count = mesh.vertex_count();
     // 1. Nothing is written unless every check passes: options, counts, overlaps.
-    let scratch_footprint = scratch.as_deref().map(|bytes| Footprint {
-        start: bytes.as_ptr() as usize,
-        stride: 1,
-        size: 1,
-        count: bytes.len(),
-    });
+    let scratch_footprint = scratch
+        .as_deref()
+        .map(|bytes| Footprint::contiguous(bytes.as_ptr() as usize, bytes.len()));
     validate::validate(mesh, options, output, scratch_footprint)?;
     if options.method == Method::Mikktspace {
         let bytes = mikktspace::scratch_bytes(vertex_count, mesh.corner_count()).ok_or(Error::SizeOverflow)?;
@@ -263,12 +260,9 @@ pub(crate) fn generate_corners_into(
     scratch: Option<&mut [u8]>,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let scratch_footprint = scratch.as_deref().map(|bytes| Footprint {
-        start: bytes.as_ptr() as usize,
-        stride: 1,
-        size: 1,
-        count: bytes.len(),
-    });
+    let scratch_footprint = scratch
+        .as_deref()
+        .map(|bytes| Footprint::contiguous(bytes.as_ptr() as usize, bytes.len()));
     validate::validate_corners(mesh, options, tangents, scratch_footprint)?;
     if options.method == Method::Mikktspace {
         let bytes = mikktspace::scratch_bytes(mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;

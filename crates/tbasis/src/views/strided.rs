@@ -95,6 +95,22 @@ pub struct Footprint {
 }
 
 impl Footprint {
+    /// The footprint of `len` contiguous bytes from address `start` (a scratch buffer).
+    ///
+    /// ```
+    /// let scratch = [0u8; 8];
+    /// let footprint = tbasis::Footprint::contiguous(scratch.as_ptr() as usize, scratch.len());
+    /// assert!(footprint.overlaps(&tbasis::Footprint::contiguous(scratch.as_ptr() as usize + 7, 1)));
+    /// ```
+    pub fn contiguous(start: usize, len: usize) -> Footprint {
+        Footprint {
+            start,
+            stride: 1,
+            size: 1,
+            count: len,
+        }
+    }
+
     /// One past the last byte of the last element.
     fn end(&self) -> usize {
         self.start + (self.count - 1) * self.stride + self.size
