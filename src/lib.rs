@@ -8,5 +8,6 @@
 #[cfg(all(feature = "fault-injection", not(debug_assertions)))]
 compile_error!("the feature fault-injection is for test builds only, never a release build");
 
+mod codes;
 mod ffi;
 mod status;

@@ -3,6 +3,9 @@
 //! space through `M⁻¹` from a Gauss-Jordan elimination, object space through `M`.
 
 // The C boundary's own source, compiled into this test (the C library has no Rust interface).
+#[allow(dead_code)]
+#[path = "../src/codes.rs"]
+mod codes;
 #[allow(dead_code, non_camel_case_types)]
 #[path = "../src/ffi.rs"]
 mod ffi;

@@ -112,6 +112,10 @@ mod copy_split;
 #[rustfmt::skip]
 #[path = "../../src/ffi.rs"]
 mod ffi;
+#[allow(dead_code)]
+#[rustfmt::skip]
+#[path = "../../src/codes.rs"]
+mod codes;
 #[path = "generate/frames.rs"]
 mod frames;
 #[path = "generate/input.rs"]

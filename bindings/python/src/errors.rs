@@ -4,7 +4,9 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tbasis::{Error, ErrorKind, Indices, Report};
+use tbasis::{Error, Indices, Report};
+
+use crate::status::status_of;
 
 create_exception!(
     tbasis._native,
@@ -14,48 +16,6 @@ create_exception!(
      status value, message the library's description and details a dict naming what failed \
      (keys: report, position, value, row)."
 );
-
-/// The C status values (`TBASIS_ERROR_*` of include/tbasis.h) the package maps to its exception
-/// classes. They never change; the crate's errors have no numbers, so the binding keeps them.
-pub mod status {
-    pub const MISSING_TEXCOORDS: u32 = 1; // TBASIS_ERROR_NULL_POINTER: texcoords NULL
-    pub const INVALID_STRIDE: u32 = 2;
-    pub const INVALID_INDEX_COUNT: u32 = 3;
-    pub const INDEX_OUT_OF_RANGE: u32 = 4;
-    pub const UNKNOWN_METHOD: u32 = 6;
-    pub const UNKNOWN_POLICY: u32 = 7;
-    pub const SIZE_OVERFLOW: u32 = 9;
-    pub const OVERLAP: u32 = 10;
-    pub const DEGENERATE_UV: u32 = 11;
-    pub const OUT_OF_MEMORY: u32 = 12;
-    pub const SCRATCH_TOO_SMALL: u32 = 13;
-    pub const INVALID_THRESHOLD: u32 = 14;
-    pub const INVALID_COUNT: u32 = 15;
-    pub const INTERNAL: u32 = 16;
-    pub const INVALID_FRAME: u32 = 17;
-    pub const TOO_MANY_VERTICES: u32 = 18;
-}
-
-/// The C status of an error of the crate, as the C library returns it (src/status.rs).
-pub fn status_of(kind: ErrorKind) -> u32 {
-    match kind {
-        ErrorKind::MissingTexcoords => status::MISSING_TEXCOORDS,
-        ErrorKind::InvalidStride => status::INVALID_STRIDE,
-        ErrorKind::InvalidIndexCount => status::INVALID_INDEX_COUNT,
-        ErrorKind::IndexOutOfRange | ErrorKind::SourceOutOfRange => status::INDEX_OUT_OF_RANGE,
-        ErrorKind::LengthMismatch | ErrorKind::BufferTooShort => status::INVALID_COUNT,
-        ErrorKind::SizeOverflow => status::SIZE_OVERFLOW,
-        ErrorKind::Overlap => status::OVERLAP,
-        ErrorKind::DegenerateUv => status::DEGENERATE_UV,
-        ErrorKind::OutOfMemory => status::OUT_OF_MEMORY,
-        ErrorKind::ScratchTooSmall => status::SCRATCH_TOO_SMALL,
-        ErrorKind::InvalidThreshold => status::INVALID_THRESHOLD,
-        ErrorKind::InvalidFrame => status::INVALID_FRAME,
-        ErrorKind::TooManyVertices => status::TOO_MANY_VERTICES,
-        // A kind added to the crate after this binding was written.
-        _ => status::INTERNAL,
-    }
-}
 
 /// The report as a tuple in the order of `tbasis_report`'s fields, `first_degenerate_triangle`
 /// `None` when there is none.

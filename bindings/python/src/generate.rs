@@ -1,9 +1,11 @@
 //! `generate` and `generate_corners`: tangents per vertex and per corner, written in place.
 
 use pyo3::prelude::*;
-use tbasis::{DegeneratePolicy, Error, Method, Options, Output, Report, DEFAULT_DEGENERATE_THRESHOLD};
+use tbasis::{Error, Options, Output, Report, DEFAULT_DEGENERATE_THRESHOLD};
 
-use crate::errors::{library_error, report_tuple, status, status_error, Details, ReportTuple};
+use crate::codes::{method_of, policy_of};
+use crate::errors::{library_error, report_tuple, status_error, Details, ReportTuple};
+use crate::status::{TBASIS_ERROR_UNKNOWN_METHOD, TBASIS_ERROR_UNKNOWN_POLICY};
 use crate::views::{rows, MeshPlaces};
 
 /// Tangents (and bitangents) per vertex into `tangents` (`bitangents`), both `(n, 4)` and `(n, 3)`
@@ -76,31 +78,6 @@ pub fn generate_corners(
     finish(py, result, mesh)
 }
 
-/// The method a C value names (`TBASIS_METHOD_*`; 0 is the default).
-fn method_of(code: u32) -> Option<Method> {
-    Some(match code {
-        0 => Method::DEFAULT,
-        1 => Method::Lengyel,
-        2 => Method::Angle,
-        3 => Method::Area,
-        4 => Method::Uniform,
-        5 => Method::Mikktspace,
-        _ => return None,
-    })
-}
-
-/// The policy a C value names (`TBASIS_DEGENERATE_*`; 0 is `method`'s default).
-fn policy_of(code: u32, method: Method) -> Option<DegeneratePolicy> {
-    Some(match code {
-        0 => DegeneratePolicy::default_for(method),
-        1 => DegeneratePolicy::Legacy,
-        2 => DegeneratePolicy::Skip,
-        3 => DegeneratePolicy::Inherit,
-        4 => DegeneratePolicy::Reject,
-        _ => return None,
-    })
-}
-
 /// The options from the C values, checked.
 fn options(
     py: Python<'_>,
@@ -111,9 +88,14 @@ fn options(
     threads: u32,
 ) -> PyResult<Options> {
     let plain = |status, message| status_error(py, status, message, Details::default());
-    let chosen = method_of(method).ok_or_else(|| plain(status::UNKNOWN_METHOD, format!("unknown method {method}")))?;
-    let policy = policy_of(policy, chosen)
-        .ok_or_else(|| plain(status::UNKNOWN_POLICY, format!("unknown degenerate policy {policy}")))?;
+    let chosen =
+        method_of(method).ok_or_else(|| plain(TBASIS_ERROR_UNKNOWN_METHOD, format!("unknown method {method}")))?;
+    let policy = policy_of(policy, chosen).ok_or_else(|| {
+        plain(
+            TBASIS_ERROR_UNKNOWN_POLICY,
+            format!("unknown degenerate policy {policy}"),
+        )
+    })?;
     let options = Options::default()
         .with_method(chosen)
         .with_policy(policy)

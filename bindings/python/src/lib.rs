@@ -6,9 +6,16 @@
 //! with the GIL released while the library runs. It still checks every array it is given, so that
 //! a direct call cannot make it read or write outside an array.
 
+// The C library's option values and statuses, which the package shares (src/ of the repository).
+#[allow(dead_code)]
+#[path = "../../../src/codes.rs"]
+mod codes;
 mod errors;
 mod generate;
 mod split;
+#[allow(dead_code, non_camel_case_types)]
+#[path = "../../../src/status.rs"]
+mod status;
 mod transform;
 mod views;
 

@@ -8,6 +8,7 @@ use core::ptr;
 
 use tbasis::ScratchBuffer;
 
+use crate::codes::*;
 use crate::ffi::*;
 use crate::status::*;
 

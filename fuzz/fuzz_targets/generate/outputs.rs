@@ -4,6 +4,7 @@
 
 use tbasis::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
 
+use crate::codes::*;
 use crate::ffi::*;
 
 use crate::arena::vec_at;

@@ -7,6 +7,7 @@ use core::ptr;
 
 use arbitrary::{Arbitrary, Result, Unstructured};
 
+use crate::codes::*;
 use crate::ffi::*;
 use crate::status::*;
 

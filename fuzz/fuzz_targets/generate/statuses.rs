@@ -3,6 +3,7 @@
 
 use core::ffi::CStr;
 
+use crate::codes::*;
 use crate::ffi::*;
 use crate::status::*;
 
