@@ -315,11 +315,11 @@ pub unsafe extern "C" fn tbasis_generate(
         let mut out = output_views(&ptr::read_unaligned(output), views.vertex_count())?;
 
         let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
-        let written = [
+        let outputs = [
             (Buffer::Tangents, Some(out.tangents.footprint())),
             (Buffer::Bitangents, out.bitangents.as_ref().map(|b| b.footprint())),
         ];
-        let scratch = caller_scratch(options_desc, needed, &views, &written)?;
+        let scratch = caller_scratch(options_desc, needed, &views, outputs)?;
         with_report(report, || match scratch {
             Some(bytes) => generate_with_scratch(&views, &opts, &mut out, bytes),
             None => generate(&views, &opts, &mut out),
@@ -372,7 +372,7 @@ unsafe fn with_report(report: *mut tbasis_report, call: impl FnOnce() -> Result<
 }
 
 /// The caller's scratch bytes from `options`, once they are large enough (`needed`), span valid
-/// addresses and share no byte with the mesh or the `written` buffers; `None` when the caller
+/// addresses and share no byte with the mesh or the `outputs` (tangents, bitangents); `None` when the caller
 /// brings none.
 ///
 /// # Safety
@@ -381,7 +381,7 @@ unsafe fn caller_scratch<'a>(
     options: Option<tbasis_options>,
     needed: usize,
     mesh: &Mesh,
-    written: &[(Buffer, Option<Footprint>)],
+    outputs: [(Buffer, Option<Footprint>); 2],
 ) -> Result<Option<&'a mut [u8]>, Failure> {
     let Some(o) = options.filter(|o| !o.scratch.is_null()) else {
         return Ok(None);
@@ -395,9 +395,8 @@ unsafe fn caller_scratch<'a>(
     }
     check_buffer(o.scratch, 1, o.scratch_size, 1)?;
     let scratch = Footprint::contiguous(o.scratch as usize, o.scratch_size);
-    let mut all = written.to_vec();
-    all.push((Buffer::Scratch, Some(scratch)));
-    check_written(mesh, &all)?;
+    let [tangents, bitangents] = outputs;
+    check_written(mesh, &[tangents, bitangents, (Buffer::Scratch, Some(scratch))])?;
     // The slice is formed only once it is known to share no byte with any other buffer.
     Ok(Some(core::slice::from_raw_parts_mut(
         o.scratch.cast::<u8>(),
@@ -447,8 +446,8 @@ pub unsafe extern "C" fn tbasis_generate_corners(
         let (views, options_desc, opts) = call_inputs(mesh, options)?;
         let mut out = write_view(tangents, tangents_stride, views.corner_count())?;
         let needed = scratch_size_for(&views, &opts).ok_or(Error::SizeOverflow)?;
-        let written = [(Buffer::Tangents, Some(out.footprint()))];
-        let scratch = caller_scratch(options_desc, needed, &views, &written)?;
+        let outputs = [(Buffer::Tangents, Some(out.footprint())), (Buffer::Bitangents, None)];
+        let scratch = caller_scratch(options_desc, needed, &views, outputs)?;
         with_report(report, || match scratch {
             Some(bytes) => generate_corners_with_scratch(&views, &opts, &mut out, bytes),
             None => generate_corners(&views, &opts, &mut out),
