@@ -287,9 +287,7 @@ fn with_bytes<R>(
                 .ok_or(Error::ScratchTooSmall { needed: size, len })?)
         }
         None => {
-            let mut owned = Vec::new();
-            owned.try_reserve_exact(size).map_err(|_| Error::OutOfMemory)?;
-            owned.resize(size, 0u8);
+            let mut owned = scratch::zeroed_bytes(size)?;
             job(&mut owned)
         }
     }

@@ -10,6 +10,16 @@ use crate::error::Error;
 use crate::options::DegeneratePolicy;
 use crate::views::strided::pod_prefix_mut;
 
+/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]. A fallible reservation first tells
+/// whether the memory is there; the zeroed allocation that follows comes from the system already
+/// cleared, so a large buffer costs only the pages a call then touches, not a pass over all of it.
+pub(crate) fn zeroed_bytes(len: usize) -> Result<Vec<u8>, Error> {
+    let mut probe: Vec<u8> = Vec::new();
+    probe.try_reserve_exact(len).map_err(|_| Error::OutOfMemory)?;
+    drop(probe);
+    Ok(vec![0; len])
+}
+
 /// Per-vertex running sums.
 ///
 /// Policy LEGACY: `primary` is the listing's `tan1` (sum of dP/du) and `secondary` its `tan2`

@@ -27,8 +27,9 @@ use self::attributes::Attributes;
 use self::faces::GROUP_WITH_ANY;
 use self::groups::Groups;
 use self::neighbors::EdgeScratch;
-use self::tspace::{CornerTerms, Inputs};
+use self::tspace::{Inputs, MemberTerms};
 use self::vector::{Packed, Vec3};
+use self::weld::WeldScratch;
 use crate::error::Error;
 use crate::mesh::{Mesh, Output};
 use crate::options::{DegeneratePolicy, Options};
@@ -74,7 +75,9 @@ struct Buffers<'a> {
 impl<'a> Buffers<'a> {
     fn take(arena: &mut Arena<'a>, vertex_count: usize, corner_count: usize) -> Result<Self, Error> {
         let triangles = corner_count / 3;
-        let phase_bytes = bytes_of(|a| edge_scratch(a, corner_count))?.max(bytes_of(|a| group_scratch(a, triangles))?);
+        let phase_bytes = bytes_of(|a| edge_scratch(a, corner_count))?
+            .max(bytes_of(|a| group_scratch(a, triangles))?)
+            .max(bytes_of(|a| WeldScratch::take(a, vertex_count, corner_count))?);
         Ok(Buffers {
             welded: arena.take(corner_count)?,
             source: arena.take(corner_count)?,
@@ -108,9 +111,9 @@ fn edge_scratch<'a>(arena: &mut Arena<'a>, corner_count: usize) -> Result<EdgeSc
     })
 }
 
-/// Grouping's and evaluation's arrays: the groups, the search stack, per-corner terms, and a word
-/// per face of the largest group.
-type GroupScratch<'a> = (Groups<'a>, &'a mut [u32], CornerTerms<'a>, &'a mut [u32]);
+/// Grouping's and evaluation's arrays: the groups, the search stack, and the terms of a group's
+/// members (room for the largest group).
+type GroupScratch<'a> = (Groups<'a>, &'a mut [u32], MemberTerms<'a>);
 
 /// Takes [`GroupScratch`] for `triangles` good triangles.
 fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScratch<'a>, Error> {
@@ -121,17 +124,17 @@ fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScr
         orientation: arena.take(3 * triangles)?,
     };
     let stack = arena.take(6 * triangles + 2)?;
-    let terms = CornerTerms {
-        s: arena.take(3 * triangles)?,
-        t: arena.take(3 * triangles)?,
-        angle: arena.take(3 * triangles)?,
+    let terms = MemberTerms {
+        corner: arena.take(triangles)?,
+        s: arena.take(triangles)?,
+        t: arena.take(triangles)?,
+        angle: arena.take(triangles)?,
     };
-    let members = arena.take(triangles)?;
-    Ok((groups, stack, terms, members))
+    Ok((groups, stack, terms))
 }
 
 /// Bytes of working memory a call needs; `None` on overflow. The layout's sum, which the header
-/// states as `57 C + 216 T + 4 V + 4 max(2 V + 2, C) + 75` (checked by a test).
+/// states as `97 C + 65 T + 8 V + 4 max(2 V + 2, C) + 16451` (checked by a test).
 pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
     if vertex_count == 0 {
         // Every index is out of range, or there are none: nothing to work on.
@@ -253,7 +256,10 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
     // 5. Weld corners equal in position, normal and texture coordinate
     //    (GenerateSharedVerticesIndexList).
-    let welded_count = weld::weld(attributes, b.welded, b.source, b.values);
+    let vertex_count = attributes.mesh.vertex_count();
+    let mut phase = Arena::Carve(&mut *b.phase);
+    let weld_scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
+    let welded_count = weld::weld(attributes, threads, b.welded, b.source, b.values, weld_scratch);
     for (packed, &vertex) in b.attributes.iter_mut().zip(&b.source[..welded_count]) {
         *packed = attributes.key(vertex);
     }
@@ -298,7 +304,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
     // 9. Orientation-preserving groups around each welded vertex (Build4RuleGroups).
     let mut phase = Arena::Carve(&mut *b.phase);
-    let (mut groups, stack, terms, members) = group_scratch(&mut phase, triangles)?;
+    let (mut groups, stack, mut terms) = group_scratch(&mut phase, triangles)?;
     let group_count = groups::build(
         ids,
         &b.neighbors[..good],
@@ -308,30 +314,14 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         stack,
     );
 
-    // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace):
-    //     per corner the projected derivatives and the corner angle, then per group the sums.
-    let (tangent_s, tangent_t, flags) = (&b.tangent_s[..good], &b.tangent_t[..good], &b.flags[..good]);
-    let used = CornerTerms {
-        s: &mut terms.s[..3 * good],
-        t: &mut terms.t[..3 * good],
-        angle: &mut terms.angle[..3 * good],
-    };
-    let ends = threads::ranges(threads, good);
-    let CornerTerms { s, t, angle } = used;
-    let parts = threads::split(s, &ends, 3)
-        .into_iter()
-        .zip(threads::split(t, &ends, 3))
-        .zip(threads::split(angle, &ends, 3))
-        .map(|((s, t), angle)| CornerTerms { s, t, angle })
-        .collect();
-    threads::run(&ends, parts, |first, part| {
-        tspace::corner_terms(packed, ids, tangent_s, tangent_t, flags, first, part)
-    });
+    // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace).
     let inputs = Inputs {
+        attributes: packed,
         ids,
-        flags,
+        tangent_s: &b.tangent_s[..good],
+        tangent_t: &b.tangent_t[..good],
+        flags: &b.flags[..good],
         order,
-        terms: &terms,
     };
     for group in 0..group_count {
         let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
@@ -340,7 +330,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             &mut groups.faces[range],
             groups.vertex[group],
             groups.orientation[group] != 0,
-            members,
+            &mut terms,
             b.tangents,
             b.orientation,
         );
@@ -413,7 +403,7 @@ mod tests {
     fn scratch_bytes_follow_the_documented_formula() {
         for (v, c) in [(1, 3), (3, 3), (4, 6), (100, 30), (10, 300), (1000, 5994), (7, 0)] {
             let t = c / 3;
-            let formula = 57 * c + 216 * t + 4 * v + 4 * (2 * v + 2).max(c) + 75;
+            let formula = 97 * c + 65 * t + 8 * v + 4 * (2 * v + 2).max(c) + 16451;
             assert_eq!(scratch_bytes(v, c), Some(formula), "{v} vertices, {c} corners");
         }
         assert_eq!(scratch_bytes(0, 0), Some(0));

@@ -23,83 +23,67 @@ fn threshold_cosine() -> f32 {
 
 /// What the per-group pass reads.
 pub(crate) struct Inputs<'a> {
+    /// Attributes of each welded vertex.
+    pub attributes: &'a [Packed],
     /// Welded vertices of each good triangle.
     pub ids: &'a [[u32; 3]],
+    /// Unit dP/ds and dP/dt of each good triangle.
+    pub tangent_s: &'a [Vec3],
+    pub tangent_t: &'a [Vec3],
     /// Flags of each good triangle (after grouping).
     pub flags: &'a [u8],
     /// The triangle each good triangle is.
     pub order: &'a [u32],
-    /// Per good corner `3g + k`: what it adds to its group ([`corner_terms`]).
-    pub terms: &'a CornerTerms<'a>,
 }
 
-/// Per good corner: dP/ds and dP/dt projected into the tangent plane of the corner's welded
-/// normal and normalized, and the corner angle measured in that plane (0 for a triangle with no
-/// usable derivative, which adds nothing).
-pub(crate) struct CornerTerms<'a> {
+/// Per member of the group being evaluated (room for the largest group): its corner `3g + k`,
+/// its triangle's dP/ds and dP/dt projected into the tangent plane of the group's welded normal
+/// and normalized, and the corner angle measured in that plane (0 for a triangle with no usable
+/// derivative, which adds nothing).
+pub(crate) struct MemberTerms<'a> {
+    pub corner: &'a mut [u32],
     pub s: &'a mut [Vec3],
     pub t: &'a mut [Vec3],
     pub angle: &'a mut [f32],
 }
 
-/// Fills `terms` for the good triangles `first..first + terms.angle.len() / 3`. Every group that
-/// holds a corner sees the same welded vertex, so these depend on the corner alone and can be
-/// computed for any range of triangles independently (and on several threads).
-pub(crate) fn corner_terms(
-    attributes: &[Packed],
-    ids: &[[u32; 3]],
-    tangent_s: &[Vec3],
-    tangent_t: &[Vec3],
-    flags: &[u8],
-    first: usize,
-    terms: CornerTerms,
-) {
-    for (j, angle) in terms.angle.iter_mut().enumerate() {
-        let (g, k) = (first + j / 3, j % 3);
-        let n = normal(&attributes[ids[g][k] as usize]);
-        terms.s[j] = project_normalized(tangent_s[g], n);
-        terms.t[j] = project_normalized(tangent_t[g], n);
-        *angle = if flags[g] & GROUP_WITH_ANY == 0 {
-            corner_angle(attributes, ids[g], k, n)
-        } else {
-            0.0
-        };
-    }
-}
-
 /// Writes the tangent and orientation of every corner of the group's triangles `faces` (sorted here)
-/// around welded vertex `vertex`. `members` holds a word per face of the largest group.
+/// around welded vertex `vertex`.
 pub(crate) fn evaluate_group(
     inputs: &Inputs,
     faces: &mut [u32],
     vertex: u32,
     preserving: bool,
-    members: &mut [u32],
+    terms: &mut MemberTerms,
     tangents: &mut [Vec3],
     orientation: &mut [u8],
 ) {
     faces.sort_unstable();
     let count = faces.len();
-    // Each face's corner at the group's vertex, as a good-corner number.
-    let members = &mut members[..count];
-    for (member, &f) in members.iter_mut().zip(faces.iter()) {
-        let i = inputs.ids[f as usize].iter().position(|&id| id == vertex).unwrap_or(0);
-        *member = 3 * f + i as u32;
+    let n = normal(&inputs.attributes[vertex as usize]);
+    let usable = |f: u32| inputs.flags[f as usize] & GROUP_WITH_ANY == 0;
+    for (j, &f) in faces.iter().enumerate() {
+        let ids = inputs.ids[f as usize];
+        let k = ids.iter().position(|&id| id == vertex).unwrap_or(0);
+        terms.corner[j] = 3 * f + k as u32;
+        terms.s[j] = project_normalized(inputs.tangent_s[f as usize], n);
+        terms.t[j] = project_normalized(inputs.tangent_t[f as usize], n);
+        terms.angle[j] = if usable(f) {
+            corner_angle(inputs.attributes, ids, k, n)
+        } else {
+            0.0
+        };
     }
-    let terms = inputs.terms;
-    let usable = |j: usize| inputs.flags[faces[j] as usize] & GROUP_WITH_ANY == 0;
-    let s = |j: usize| terms.s[members[j] as usize];
-    let t = |j: usize| terms.t[members[j] as usize];
-    let sum = |chosen: &mut dyn Iterator<Item = usize>| {
-        weighted_sum(chosen.map(|j| (terms.angle[members[j] as usize], s(j))))
-    };
+    let (s, t, angle) = (&terms.s[..count], &terms.t[..count], &terms.angle[..count]);
+    let usable = |j: usize| usable(faces[j]);
+    let sum = |chosen: &mut dyn Iterator<Item = usize>| weighted_sum(chosen.map(|j| (angle[j], s[j])));
     let write = |j: usize, tangent: Vec3, tangents: &mut [Vec3], orientation: &mut [u8]| {
-        let corner = 3 * inputs.order[faces[j] as usize] as usize + members[j] as usize % 3;
+        let corner = 3 * inputs.order[faces[j] as usize] as usize + terms.corner[j] as usize % 3;
         tangents[corner] = tangent;
         orientation[corner] = u8::from(preserving);
     };
 
-    if one_half_space(count, &s, &usable) && one_half_space(count, &t, &usable) {
+    if one_half_space(s, &usable) && one_half_space(t, &usable) {
         let tangent = sum(&mut (0..count).filter(|&j| usable(j)));
         for j in 0..count {
             write(j, tangent, tangents, orientation);
@@ -110,7 +94,7 @@ pub(crate) fn evaluate_group(
     // Some directions may be exactly opposite: compare every pair, as mikktspace.c does.
     let threshold = threshold_cosine();
     let member = |j: usize, k: usize| {
-        !usable(j) || !usable(k) || j == k || (dot(s(j), s(k)) > threshold && dot(t(j), t(k)) > threshold)
+        !usable(j) || !usable(k) || j == k || (dot(s[j], s[k]) > threshold && dot(t[j], t[k]) > threshold)
     };
     let mut subgroups: Vec<(Vec<usize>, Vec3)> = Vec::new();
     for j in 0..count {
@@ -161,18 +145,17 @@ fn weighted_sum(terms: impl Iterator<Item = (f32, Vec3)>) -> Vec3 {
     }
 }
 
-/// True when no two usable directions `direction(0..count)` can have a cosine of -1 or
+/// True when no two usable `directions` can have a cosine of -1 or
 /// less, nor a `NaN` one: every one is finite and either short (length at most 1/2, whose cosine
 /// with any of these stays above -1) or unit length within 1e-4 and more than 0.01 along the
 /// first unit one. Two such unit vectors sum to at least 0.02 along that axis, so their computed
 /// dot product stays above -1 + 1e-4 minus a few float roundings.
-fn one_half_space(count: usize, direction: &dyn Fn(usize) -> Vec3, usable: &dyn Fn(usize) -> bool) -> bool {
+fn one_half_space(directions: &[Vec3], usable: &dyn Fn(usize) -> bool) -> bool {
     let mut axis: Option<Vec3> = None;
-    for j in 0..count {
+    for (j, &d) in directions.iter().enumerate() {
         if !usable(j) {
             continue;
         }
-        let d = direction(j);
         if !d.iter().all(|x| x.is_finite()) {
             return false;
         }

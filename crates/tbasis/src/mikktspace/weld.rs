@@ -7,23 +7,179 @@
 //! that splitting leaves. That order is visible downstream: the representative's bits are read
 //! (a `-0.0` against a `+0.0`), a cell whose midpoint is not finite is left unwelded, and the
 //! representative's index decides which edges end mikktspace.c's edge sort (see `neighbors`). So
-//! the splitting is replayed step by step, its recursion on a stack and its final quadratic
-//! search replaced by a sort.
+//! the splitting is replayed step by step, its recursion on a stack, and its final quadratic search
+//! compares vertex numbers first: corners of one vertex are equal unless a float is `NaN`, and only
+//! corners of different vertices at the same position (seams, unwelded exports) read their
+//! attributes. Cells are independent, so ranges of them run on separate threads.
 #![forbid(unsafe_code)]
 
+use super::arena::Arena;
 use super::attributes::Attributes;
+use super::threads;
 use super::vector::Vec3;
 use super::NONE;
+use crate::error::Error;
 
 /// mikktspace.c's grid: cells along the widest axis of the bounding box.
 const GRID_CELLS: usize = 2048;
+
+/// Marks a vertex with a `NaN` among its attributes in [`WeldScratch::cells`]: it equals nothing.
+const UNEQUAL: u32 = 1 << 31;
+
+/// Working memory, all of it reused by the phases after the weld.
+pub(crate) struct WeldScratch<'a> {
+    /// Per vertex: its grid cell, or'd with [`UNEQUAL`]; per cell, where its corners start, and
+    /// the next free place.
+    cells: &'a mut [u32],
+    starts: &'a mut [u32],
+    cursors: &'a mut [u32],
+    /// Per corner, in cell order: its position, and (corner, vertex or [`NONE`] when the vertex is
+    /// [`UNEQUAL`], representative corner).
+    positions: &'a mut [Vec3],
+    entries: &'a mut [[u32; 3]],
+    /// Pending parts of a cell, as (first, last) entry.
+    stack: &'a mut [[u32; 2]],
+    /// Per corner: its representative, then per representative its welded number.
+    representative: &'a mut [u32],
+    number: &'a mut [u32],
+}
+
+impl<'a> WeldScratch<'a> {
+    /// Takes the scratch for `vertex_count` vertices and `corner_count` corners.
+    pub fn take(arena: &mut Arena<'a>, vertex_count: usize, corner_count: usize) -> Result<Self, Error> {
+        Ok(WeldScratch {
+            cells: arena.take(vertex_count)?,
+            starts: arena.take(GRID_CELLS + 1)?,
+            cursors: arena.take(GRID_CELLS)?,
+            positions: arena.take(corner_count)?,
+            entries: arena.take(corner_count)?,
+            stack: arena.take(corner_count)?,
+            representative: arena.take(corner_count)?,
+            number: arena.take(corner_count)?,
+        })
+    }
+}
 
 /// Replaces the vertex of every corner in `corners` (indices already checked) by the number of its
 /// welded vertex, numbered in order of first use; writes, per welded vertex, the vertex it reads its
 /// attributes from to `source` and mikktspace.c's index for it (`4 * face + corner` of the corner
 /// that represents it) to `values`. Returns the number of welded vertices.
-pub(crate) fn weld(attributes: &Attributes, corners: &mut [u32], source: &mut [u32], values: &mut [u32]) -> usize {
-    weld_exactly(attributes, corners, source, values)
+pub(crate) fn weld(
+    attributes: &Attributes,
+    threads: u32,
+    corners: &mut [u32],
+    source: &mut [u32],
+    values: &mut [u32],
+    scratch: WeldScratch,
+) -> usize {
+    let WeldScratch {
+        cells,
+        starts,
+        cursors,
+        positions,
+        entries,
+        stack,
+        representative,
+        number,
+    } = scratch;
+    let corner_count = corners.len();
+    let position = |v: u32| attributes.position(v);
+
+    // 1. The bounding box, with the C's `if ... else if` updates (a NaN never moves it).
+    let mut min = position(corners[0]);
+    let mut max = min;
+    for &v in &corners[1..] {
+        let p = position(v);
+        for axis in 0..3 {
+            if min[axis] > p[axis] {
+                min[axis] = p[axis];
+            } else if max[axis] < p[axis] {
+                max[axis] = p[axis];
+            }
+        }
+    }
+    let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
+
+    // 2. Corners by grid cell, in corner order within a cell.
+    for (v, cell) in cells.iter_mut().enumerate() {
+        let key = attributes.key(v as u32);
+        let unequal = if key.iter().any(|x| x.is_nan()) { UNEQUAL } else { 0 };
+        *cell = grid_cell(min[axis], max[axis], key[axis]) as u32 | unequal;
+    }
+    starts.fill(0);
+    for &v in corners.iter() {
+        starts[(cells[v as usize] & !UNEQUAL) as usize + 1] += 1;
+    }
+    for k in 0..GRID_CELLS {
+        starts[k + 1] += starts[k];
+    }
+    cursors.copy_from_slice(&starts[..GRID_CELLS]);
+    for (c, &v) in corners.iter().enumerate() {
+        let cell = cells[v as usize];
+        let cursor = &mut cursors[(cell & !UNEQUAL) as usize];
+        let at = *cursor as usize;
+        *cursor += 1;
+        positions[at] = position(v);
+        let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
+        entries[at] = [c as u32, vertex, c as u32];
+    }
+
+    // 3. Every cell split and welded (`MergeVertsFast`), ranges of cells on separate threads.
+    let ends = cell_ranges(threads, starts);
+    let bounds: Vec<usize> = ends.iter().map(|&cell| starts[cell] as usize).collect();
+    let first_cells = core::iter::once(0).chain(ends.iter().copied());
+    let parts = threads::split(positions, &bounds, 1)
+        .into_iter()
+        .zip(threads::split(entries, &bounds, 1))
+        .zip(threads::split(stack, &bounds, 1))
+        .zip(first_cells.zip(ends.iter().copied()))
+        .collect();
+    threads::run(
+        &bounds,
+        parts,
+        |first, (((positions, entries), stack), (first_cell, end_cell))| {
+            for k in first_cell..end_cell {
+                let cell = starts[k] as usize - first..starts[k + 1] as usize - first;
+                if cell.len() > 1 {
+                    split_and_weld(attributes, &mut positions[cell.clone()], &mut entries[cell], stack);
+                }
+            }
+        },
+    );
+
+    // 4. Number the welded vertices in order of first use.
+    for &[corner, _, first] in entries.iter() {
+        representative[corner as usize] = first;
+    }
+    number.fill(NONE);
+    let mut count = 0u32;
+    for c in 0..corner_count {
+        let first = representative[c] as usize;
+        if number[first] == NONE {
+            number[first] = count;
+            // `first` has not been renumbered yet: either it is `c`, or it lies ahead.
+            source[count as usize] = corners[first];
+            values[count as usize] = (4 * (first / 3) + first % 3) as u32;
+            count += 1;
+        }
+        corners[c] = number[first];
+    }
+    count as usize
+}
+
+/// The exclusive ends of the ranges of grid cells the workers take, about equal in corners.
+fn cell_ranges(threads: u32, starts: &[u32]) -> Vec<usize> {
+    let corner_count = starts[GRID_CELLS] as usize;
+    let targets = threads::ranges(threads, corner_count / 3);
+    let mut ends: Vec<usize> = targets
+        .iter()
+        .map(|&t| starts.partition_point(|&s| (s as usize) < 3 * t).min(GRID_CELLS))
+        .collect();
+    if let Some(last) = ends.last_mut() {
+        *last = GRID_CELLS;
+    }
+    ends.dedup();
+    ends
 }
 
 /// The bits of `x`, with -0 as +0 so that values equal under `==` have equal bits.
@@ -36,101 +192,25 @@ fn canonical_bits(x: f32) -> u32 {
     }
 }
 
-/// A corner in a grid cell, as `STmpVert`: its position and its number.
-#[derive(Clone, Copy)]
-struct CellEntry {
-    position: Vec3,
-    corner: u32,
-}
-
-/// mikktspace.c's weld replayed step by step: the grid along the bounding box's widest axis,
-/// each cell split at midpoints until a part's widest extent is one value, then each corner of
-/// such a part welded to the first equal corner before it. Allocates its own memory (it runs only
-/// for the inputs the module comment names). Returns the number of welded vertices.
-fn weld_exactly(attributes: &Attributes, corners: &mut [u32], source: &mut [u32], values: &mut [u32]) -> usize {
-    let corner_count = corners.len();
-    let position = |c: usize| attributes.position(corners[c]);
-    let mut representative: Vec<u32> = (0..corner_count as u32).collect();
-
-    // The bounding box, with the C's `if ... else if` updates (a NaN never moves it).
-    let mut min = position(0);
-    let mut max = min;
-    for c in 1..corner_count {
-        let p = position(c);
-        for axis in 0..3 {
-            if min[axis] > p[axis] {
-                min[axis] = p[axis];
-            } else if max[axis] < p[axis] {
-                max[axis] = p[axis];
-            }
-        }
-    }
-    let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
-
-    // Corners by grid cell, in corner order within a cell.
-    let cells: Vec<usize> = (0..corner_count)
-        .map(|c| grid_cell(min[axis], max[axis], position(c)[axis]))
-        .collect();
-    let mut starts = vec![0usize; GRID_CELLS + 1];
-    for &cell in &cells {
-        starts[cell + 1] += 1;
-    }
-    for k in 0..GRID_CELLS {
-        starts[k + 1] += starts[k];
-    }
-    let mut filled = starts.clone();
-    let mut by_cell = vec![0u32; corner_count];
-    for (c, &cell) in cells.iter().enumerate() {
-        by_cell[filled[cell]] = c as u32;
-        filled[cell] += 1;
-    }
-
-    let mut entries = Vec::new();
-    for k in 0..GRID_CELLS {
-        let members = &by_cell[starts[k]..starts[k + 1]];
-        if members.len() < 2 {
-            continue;
-        }
-        entries.clear();
-        entries.extend(members.iter().map(|&c| CellEntry {
-            position: position(c as usize),
-            corner: c,
-        }));
-        split_and_weld(attributes, corners, &mut entries, &mut representative);
-    }
-
-    // Number the welded vertices in order of first use.
-    let mut number = vec![NONE; corner_count];
-    let mut count = 0u32;
-    for &first in representative.iter() {
-        let first = first as usize;
-        if number[first] == NONE {
-            number[first] = count;
-            source[count as usize] = corners[first];
-            values[count as usize] = (4 * (first / 3) + first % 3) as u32;
-            count += 1;
-        }
-    }
-    for c in 0..corner_count {
-        corners[c] = number[representative[c] as usize];
-    }
-    count as usize
-}
-
-/// `MergeVertsFast` on one grid cell, its recursion on a stack (a cell can split hundreds deep).
-fn split_and_weld(attributes: &Attributes, corners: &[u32], entries: &mut [CellEntry], representative: &mut [u32]) {
-    let mut parts = vec![(0usize, entries.len() - 1)];
-    while let Some((left, right)) = parts.pop() {
-        let part = &mut entries[left..=right];
-        let mut min = part[0].position;
+/// `MergeVertsFast` on one grid cell, its recursion on `stack` (a cell can split hundreds deep;
+/// pending parts are disjoint and hold two entries or more, so with the partition's pairs the
+/// stack needs as many slots as the cell has entries).
+fn split_and_weld(attributes: &Attributes, positions: &mut [Vec3], entries: &mut [[u32; 3]], stack: &mut [[u32; 2]]) {
+    stack[0] = [0, entries.len() as u32 - 1];
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let [left, right] = stack[top].map(|x| x as usize);
+        let part = &mut positions[left..=right];
+        let mut min = part[0];
         let mut max = min;
-        for entry in &part[1..] {
+        for p in &part[1..] {
             for axis in 0..3 {
-                if min[axis] > entry.position[axis] {
-                    min[axis] = entry.position[axis];
+                if min[axis] > p[axis] {
+                    min[axis] = p[axis];
                 }
-                if max[axis] < entry.position[axis] {
-                    max[axis] = entry.position[axis];
+                if max[axis] < p[axis] {
+                    max[axis] = p[axis];
                 }
             }
         }
@@ -141,88 +221,100 @@ fn split_and_weld(attributes: &Attributes, corners: &[u32], entries: &mut [CellE
             continue;
         }
         if separator >= max[axis] || separator <= min[axis] {
-            weld_run(attributes, corners, part, representative);
+            weld_run(attributes, &mut entries[left..=right]);
             continue;
         }
-        let (below_end, above_start) = partition(part, axis, separator);
+        // Pending parts lie outside this one and hold two entries or more: the slots past them
+        // have room for the pairs.
+        let pairs = &mut stack[top..];
+        let (below_end, above_start) = partition(part, &mut entries[left..=right], axis, separator, pairs);
         if below_end > 0 {
-            parts.push((left, left + below_end));
+            stack[top] = [left as u32, (left + below_end) as u32];
+            top += 1;
         }
         if above_start < part.len() - 1 {
-            parts.push((left + above_start, right));
+            stack[top] = [(left + above_start) as u32, right as u32];
+            top += 1;
         }
     }
 }
 
-/// The C's two-sided partition of `part` around `separator` on `axis`, swap for swap. Returns the
-/// last position of the lower part (0 when it holds one entry or none, which need no welding) and
-/// the first position of the upper part.
-fn partition(part: &mut [CellEntry], axis: usize, separator: f32) -> (usize, usize) {
-    let below = |e: &CellEntry| e.position[axis] < separator;
-    let (mut l, mut r) = (0isize, part.len() as isize - 1);
-    while l < r {
-        let (mut ready_left, mut ready_right) = (false, false);
-        while !ready_left && l < r {
-            ready_left = !below(&part[l as usize]);
-            if !ready_left {
-                l += 1;
-            }
-        }
-        while !ready_right && l < r {
-            ready_right = below(&part[r as usize]);
-            if !ready_right {
-                r -= 1;
-            }
-        }
-        if ready_left && ready_right {
-            part.swap(l as usize, r as usize);
-            l += 1;
-            r -= 1;
-        }
+/// The C's two-sided partition of `positions` (and `entries` alongside) around `separator` on
+/// `axis`, swap for swap. Its scans swap the i-th entry at or above the separator, counted from the
+/// left, with the i-th below it, counted from the right, until the two cross: exactly the entries
+/// on the wrong side of the boundary `k` (the number below), paired in order. Finding those pairs
+/// in straight passes avoids the scans' unpredictable branches. `pairs` needs half as many slots
+/// as there are entries, plus one. Returns the last position of the lower part (0 when it holds one
+/// entry or none, which need no welding) and the first position of the upper part.
+fn partition(
+    positions: &mut [Vec3],
+    entries: &mut [[u32; 3]],
+    axis: usize,
+    separator: f32,
+    pairs: &mut [[u32; 2]],
+) -> (usize, usize) {
+    let below = |p: &Vec3| p[axis] < separator;
+    let k = positions.iter().filter(|p| below(p)).count();
+    let mut swaps = 0;
+    for (i, p) in positions[..k].iter().enumerate() {
+        pairs[swaps][0] = i as u32;
+        swaps += usize::from(!below(p));
     }
-    if l == r {
-        if below(&part[r as usize]) {
-            l += 1;
-        } else {
-            r -= 1;
-        }
+    let mut from_right = 0;
+    for (i, p) in positions.iter().enumerate().skip(k).rev() {
+        pairs[from_right][1] = i as u32;
+        from_right += usize::from(below(p));
     }
-    (r.max(0) as usize, l as usize)
+    for &[l, r] in &pairs[..swaps] {
+        positions.swap(l as usize, r as usize);
+        entries.swap(l as usize, r as usize);
+    }
+    (k.saturating_sub(1), k)
 }
 
-/// The final step on a part whose widest extent is one value: each corner takes the welded vertex
-/// of the first corner before it, in the part's order, that equals it in all eight floats. Sorting
-/// by (canonical key, position) finds those first corners without the C's quadratic search.
-fn weld_run(attributes: &Attributes, corners: &[u32], part: &[CellEntry], representative: &mut [u32]) {
+/// The final step on a part whose widest extent is one value: each corner takes as representative
+/// the first corner before it, in the part's order, equal to it in all eight floats.
+fn weld_run(attributes: &Attributes, part: &mut [[u32; 3]]) {
     /// Up to this many corners (a vertex's few corners, the usual case) the C's own search is
     /// cheaper than sorting.
     const SEARCH_LIMIT: usize = 16;
-    let key = |entry: &CellEntry| {
-        let key = attributes.key(corners[entry.corner as usize]);
-        (!key.iter().any(|x| x.is_nan())).then(|| key.map(canonical_bits))
-    };
-    if part.len() <= SEARCH_LIMIT {
-        let mut keys = [None; SEARCH_LIMIT];
-        for (at, entry) in part.iter().enumerate() {
-            keys[at] = key(entry);
-            if keys[at].is_some() {
-                if let Some(first) = (0..at).find(|&before| keys[before] == keys[at]) {
-                    representative[entry.corner as usize] = part[first].corner;
-                }
+    let key = |vertex: u32| attributes.key(vertex).map(canonical_bits);
+    let first_vertex = part.iter().map(|e| e[1]).find(|&v| v != NONE);
+    if part.iter().all(|e| e[1] == NONE || Some(e[1]) == first_vertex) {
+        // One vertex's corners (and unequal ones, which stay alone): all equal the first.
+        if let Some(first) = part.iter().find(|e| e[1] != NONE).map(|e| e[0]) {
+            for entry in part.iter_mut().filter(|e| e[1] != NONE) {
+                entry[2] = first;
             }
         }
         return;
     }
-    let mut order: Vec<(usize, [u32; 8])> = part
-        .iter()
-        .enumerate()
-        .filter_map(|(at, entry)| key(entry).map(|key| (at, key)))
-        .collect();
-    order.sort_unstable_by(|a, b| a.1.cmp(&b.1).then(a.0.cmp(&b.0)));
-    for run in order.chunk_by(|a, b| a.1 == b.1) {
-        let first = part[run[0].0].corner;
-        for &(at, _) in &run[1..] {
-            representative[part[at].corner as usize] = first;
+    if part.len() <= SEARCH_LIMIT {
+        let mut keys = [[0u32; 8]; SEARCH_LIMIT];
+        for at in 0..part.len() {
+            let vertex = part[at][1];
+            if vertex == NONE {
+                continue;
+            }
+            keys[at] = key(vertex);
+            let equal = |e: &(usize, &[u32; 3])| e.1[1] == vertex || (e.1[1] != NONE && keys[e.0] == keys[at]);
+            if let Some((_, first)) = part[..at].iter().enumerate().find(equal) {
+                part[at][2] = first[0];
+            }
+        }
+        return;
+    }
+    // The part's order is not needed after this: sort it by attributes, then by place.
+    for (at, entry) in part.iter_mut().enumerate() {
+        entry[2] = at as u32;
+    }
+    let sort_key = |e: &[u32; 3]| (e[1] == NONE, if e[1] == NONE { [0; 8] } else { key(e[1]) }, e[2]);
+    part.sort_unstable_by_key(sort_key);
+    // Unequal corners each make a run of their own.
+    for run in part.chunk_by_mut(|a, b| a[1] != NONE && b[1] != NONE && key(a[1]) == key(b[1])) {
+        let first = run[0][0];
+        for entry in run.iter_mut() {
+            entry[2] = first;
         }
     }
 }
@@ -275,6 +367,44 @@ mod tests {
         ] {
             let cell = grid_cell(min, max, v);
             assert!(cell < GRID_CELLS, "{min} {max} {v} -> {cell}");
+        }
+    }
+
+    #[test]
+    fn a_run_welds_each_corner_to_the_first_equal_one() {
+        // Vertices 0 and 1 are equal (+0 against -0), 2 differs, 3 is unequal (NONE in entries).
+        let positions = [[0.0f32, 0.0, 0.0]; 4];
+        let normals = [[0.0f32, 0.0, 1.0], [0.0, -0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]];
+        let texcoords = [[0.5f32, 0.5], [0.5, 0.5], [0.25, 0.5], [0.5, f32::NAN]];
+        let mesh = crate::Mesh::new(&positions[..], &normals[..]).with_texcoords(&texcoords[..]);
+        let attributes = Attributes {
+            mesh: &mesh,
+            flip_v: false,
+        };
+        let mut part = [
+            [10, 1, 10],
+            [11, NONE, 11],
+            [12, 0, 12],
+            [13, 2, 13],
+            [14, 2, 14],
+            [15, 1, 15],
+        ];
+        weld_run(&attributes, &mut part);
+        assert_eq!(part.map(|e| e[2]), [10, 11, 10, 13, 13, 10]);
+        // One vertex's corners all take the first; the sorting path agrees with the search.
+        let mut one = [[20, 2, 20], [21, NONE, 21], [22, 2, 22]];
+        weld_run(&attributes, &mut one);
+        assert_eq!(one.map(|e| e[2]), [20, 21, 20]);
+        let vertex_of = |c: u32| [1, NONE, 0, 2, 2][c as usize % 5];
+        let mut long: Vec<[u32; 3]> = (0..40u32).rev().map(|c| [c, vertex_of(c), c]).collect();
+        weld_run(&attributes, &mut long);
+        for &[c, vertex, first] in &long {
+            let equal = |d: u32| match (vertex_of(d), vertex) {
+                (NONE, _) | (_, NONE) => d == c,
+                (a, b) => (a == 2) == (b == 2),
+            };
+            let expected = (0..40u32).rev().find(|&d| equal(d)).unwrap();
+            assert_eq!(first, expected, "corner {c}");
         }
     }
 }
