@@ -304,7 +304,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
     // 9. Orientation-preserving groups around each welded vertex (Build4RuleGroups).
     let mut phase = Arena::Carve(&mut *b.phase);
-    let (mut groups, stack, mut terms) = group_scratch(&mut phase, triangles)?;
+    let (mut groups, stack, terms) = group_scratch(&mut phase, triangles)?;
     let group_count = groups::build(
         ids,
         &b.neighbors[..good],
@@ -314,7 +314,15 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         stack,
     );
 
-    // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace).
+    // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace),
+    //     on ranges of good triangles: a worker evaluates the groups with a corner in its range
+    //     and writes those corners (a group straddling two ranges is evaluated twice, alike).
+    let mut largest = 0;
+    for group in 0..group_count {
+        let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
+        largest = largest.max(range.len());
+        groups.faces[range].sort_unstable();
+    }
     let inputs = Inputs {
         attributes: packed,
         ids,
@@ -323,18 +331,52 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         flags: &b.flags[..good],
         order,
     };
-    for group in 0..group_count {
-        let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
-        tspace::evaluate_group(
-            &inputs,
-            &mut groups.faces[range],
-            groups.vertex[group],
-            groups.orientation[group] != 0,
-            &mut terms,
-            b.tangents,
-            b.orientation,
-        );
-    }
+    let ends = threads::ranges(threads, good);
+    // Each range's per-corner arrays begin with the triangle of its first good triangle.
+    let triangle_ends: Vec<usize> = ends
+        .iter()
+        .map(|&end| if end == good { triangles } else { order[end] as usize })
+        .collect();
+    let starts = core::iter::once(0).chain(triangle_ends.iter().copied());
+    let mut first_terms = Some(terms);
+    let parts = threads::split(b.tangents, &triangle_ends, 3)
+        .into_iter()
+        .zip(threads::split(b.orientation, &triangle_ends, 3))
+        .zip(starts.zip(ends.iter()))
+        .map(|((tangents, orientation), (first_triangle, &end))| {
+            (tangents, orientation, first_triangle, end as u32, first_terms.take())
+        })
+        .collect();
+    let groups = &groups;
+    threads::run(
+        &ends,
+        parts,
+        |first, (tangents, orientation, first_triangle, end, terms)| {
+            let mut out = tspace::Written {
+                tangents,
+                orientation,
+                goods: first as u32..end,
+                first_triangle,
+            };
+            let mut evaluate = |terms: &mut MemberTerms| {
+                for group in 0..group_count {
+                    let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
+                    tspace::evaluate_group(
+                        &inputs,
+                        &groups.faces[range],
+                        groups.vertex[group],
+                        groups.orientation[group] != 0,
+                        terms,
+                        &mut out,
+                    );
+                }
+            };
+            match terms {
+                Some(mut terms) => evaluate(&mut terms),
+                None => MemberTerms::with_owned(largest, evaluate),
+            }
+        },
+    );
 
     // 11. Degenerate triangles copy the first good corner of the same welded vertex
     //     (DegenEpilogue).

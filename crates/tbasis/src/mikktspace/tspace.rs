@@ -47,18 +47,44 @@ pub(crate) struct MemberTerms<'a> {
     pub angle: &'a mut [f32],
 }
 
-/// Writes the tangent and orientation of every corner of the group's triangles `faces` (sorted here)
-/// around welded vertex `vertex`.
+impl MemberTerms<'_> {
+    /// Runs `job` with terms of its own for groups of up to `len` triangles.
+    pub fn with_owned<R>(len: usize, job: impl FnOnce(&mut MemberTerms) -> R) -> R {
+        let (mut corner, mut s, mut t, mut angle) =
+            (vec![0; len], vec![[0.0; 3]; len], vec![[0.0; 3]; len], vec![0.0; len]);
+        job(&mut MemberTerms {
+            corner: &mut corner,
+            s: &mut s,
+            t: &mut t,
+            angle: &mut angle,
+        })
+    }
+}
+
+/// Where one worker writes: the corners of the good triangles `goods`, its part of the per-corner
+/// arrays beginning with triangle `first_triangle`.
+pub(crate) struct Written<'a> {
+    pub tangents: &'a mut [Vec3],
+    pub orientation: &'a mut [u8],
+    pub goods: core::ops::Range<u32>,
+    pub first_triangle: usize,
+}
+
+/// Writes the tangent and orientation of the corners, among those `out` takes, of the group's
+/// triangles `faces` (in ascending order) around welded vertex `vertex`. A group with no such
+/// corner is skipped; one whose corners two workers take is evaluated by both, alike.
 pub(crate) fn evaluate_group(
     inputs: &Inputs,
-    faces: &mut [u32],
+    faces: &[u32],
     vertex: u32,
     preserving: bool,
     terms: &mut MemberTerms,
-    tangents: &mut [Vec3],
-    orientation: &mut [u8],
+    out: &mut Written,
 ) {
-    faces.sort_unstable();
+    let first_taken = faces.partition_point(|&f| f < out.goods.start);
+    if faces.get(first_taken).is_none_or(|&f| f >= out.goods.end) {
+        return;
+    }
     let count = faces.len();
     let n = normal(&inputs.attributes[vertex as usize]);
     let usable = |f: u32| inputs.flags[f as usize] & GROUP_WITH_ANY == 0;
@@ -77,16 +103,19 @@ pub(crate) fn evaluate_group(
     let (s, t, angle) = (&terms.s[..count], &terms.t[..count], &terms.angle[..count]);
     let usable = |j: usize| usable(faces[j]);
     let sum = |chosen: &mut dyn Iterator<Item = usize>| weighted_sum(chosen.map(|j| (angle[j], s[j])));
-    let write = |j: usize, tangent: Vec3, tangents: &mut [Vec3], orientation: &mut [u8]| {
-        let corner = 3 * inputs.order[faces[j] as usize] as usize + terms.corner[j] as usize % 3;
-        tangents[corner] = tangent;
-        orientation[corner] = u8::from(preserving);
+    let write = |j: usize, tangent: Vec3, out: &mut Written| {
+        if out.goods.contains(&faces[j]) {
+            let triangle = inputs.order[faces[j] as usize] as usize - out.first_triangle;
+            let corner = 3 * triangle + terms.corner[j] as usize % 3;
+            out.tangents[corner] = tangent;
+            out.orientation[corner] = u8::from(preserving);
+        }
     };
 
     if one_half_space(s, &usable) && one_half_space(t, &usable) {
         let tangent = sum(&mut (0..count).filter(|&j| usable(j)));
         for j in 0..count {
-            write(j, tangent, tangents, orientation);
+            write(j, tangent, out);
         }
         return;
     }
@@ -107,7 +136,7 @@ pub(crate) fn evaluate_group(
                 tangent
             }
         };
-        write(j, tangent, tangents, orientation);
+        write(j, tangent, out);
     }
 }
 
