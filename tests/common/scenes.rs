@@ -64,7 +64,7 @@ impl Pcg32 {
     }
 }
 
-/// The parametric surfaces. Both are periodic in `a`; the torus also in `b`.
+/// The parametric surfaces. Torus and sphere are periodic in `a`; the torus also in `b`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Surface {
     /// Major radius 1, minor radius 0.4: `a` runs around the axis, `b` around the tube.
@@ -72,7 +72,13 @@ pub enum Surface {
     /// Unit sphere between latitudes -72 and +72 degrees (the parametrization is singular at the
     /// poles, where no true tangent exists): `a` is longitude, `b` latitude.
     Sphere,
+    /// A 2 x 2 height field `z = 0.25 sin(2 pi a) cos(2 pi b)` over `[-1, 1]^2`: borders on all
+    /// four sides, slopes up to about 1.6.
+    HeightField,
 }
+
+/// Amplitude of [`Surface::HeightField`].
+const HEIGHT: f64 = 0.25;
 
 const TORUS_MAJOR: f64 = 1.0;
 const TORUS_MINOR: f64 = 0.4;
@@ -108,6 +114,14 @@ fn surface_frame(surface: Surface, a: f64, b: f64) -> ([f64; 3], [f64; 3], [f64;
             ];
             (position, p_a, p_b, position)
         }
+        Surface::HeightField => {
+            let (sin_a, cos_a) = (TAU * a).sin_cos();
+            let (sin_b, cos_b) = (TAU * b).sin_cos();
+            let position = [2.0 * a - 1.0, 2.0 * b - 1.0, HEIGHT * sin_a * cos_b];
+            let p_a = [2.0, 0.0, HEIGHT * TAU * cos_a * cos_b];
+            let p_b = [0.0, 2.0, -HEIGHT * TAU * sin_a * sin_b];
+            (position, p_a, p_b, normalize(cross(p_a, p_b)))
+        }
     }
 }
 
@@ -127,6 +141,16 @@ fn warp_inverse_jacobian(a: f64, b: f64) -> ([f64; 2], [f64; 2]) {
     ([1.0 / det, -dt_da / det], [-ds_db / det, 1.0 / det])
 }
 
+/// How texture coordinates are disturbed after the warp (the truth stays the warp's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum UvNoise {
+    None,
+    /// Each vertex's `(s, t)` moved by up to this fraction of a grid cell along each axis.
+    Jitter(f64),
+    /// `(s, t)` rounded to multiples of `1 / steps`, as 8- to 12-bit texture coordinates are.
+    Quantize(u32),
+}
+
 /// What kind of scene to build and how finely.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneSpec {
@@ -136,6 +160,16 @@ pub struct SceneSpec {
     /// Roughly how many vertices (seam duplicates included).
     pub target_vertices: usize,
     pub seed: u64,
+    /// Quads along `a` and `b`, when given, instead of a grid sized from `target_vertices`.
+    pub grid: Option<(usize, usize)>,
+    /// Positions scaled by `(x, y, z)` (normals by the inverse transpose): a non-uniform scale
+    /// squashes the surface, stretching its triangles and its texture.
+    pub scale: [f64; 3],
+    pub uv_noise: UvNoise,
+    /// How far grid vertices move, in cells ([`JITTER`] by default; 0 for a regular grid).
+    pub jitter: f64,
+    /// The texture map is the warp [`warp`] (by default) or the identity `(s, t) = (a, b)`.
+    pub warped: bool,
 }
 
 impl SceneSpec {
@@ -145,7 +179,46 @@ impl SceneSpec {
             mirrored: false,
             target_vertices,
             seed: 1,
+            grid: None,
+            scale: [1.0; 3],
+            uv_noise: UvNoise::None,
+            jitter: JITTER,
+            warped: true,
         }
+    }
+
+    /// This scene on a regular grid (no jitter), with the identity texture map when `warped` is
+    /// false.
+    pub fn regular(self, warped: bool) -> Self {
+        SceneSpec {
+            jitter: 0.0,
+            warped,
+            ..self
+        }
+    }
+
+    /// A height field of about `target_vertices`.
+    pub fn height_field(target_vertices: usize) -> Self {
+        SceneSpec {
+            surface: Surface::HeightField,
+            ..SceneSpec::torus(target_vertices)
+        }
+    }
+
+    /// This scene with exactly `n_a` by `n_b` quads.
+    pub fn with_grid(self, n_a: usize, n_b: usize) -> Self {
+        SceneSpec {
+            grid: Some((n_a, n_b)),
+            ..self
+        }
+    }
+
+    pub fn with_scale(self, scale: [f64; 3]) -> Self {
+        SceneSpec { scale, ..self }
+    }
+
+    pub fn with_uv_noise(self, uv_noise: UvNoise) -> Self {
+        SceneSpec { uv_noise, ..self }
     }
 
     pub fn sphere(target_vertices: usize) -> Self {
@@ -162,17 +235,32 @@ impl SceneSpec {
         }
     }
 
-    /// `torus`, `sphere`, `mirrored-torus`, ...
+    /// `torus`, `sphere`, `mirrored-torus`, `scaled-sphere`, `torus-uv-jitter`, ...
     pub fn name(&self) -> String {
         let surface = match self.surface {
             Surface::Torus => "torus",
             Surface::Sphere => "sphere",
+            Surface::HeightField => "height-field",
         };
-        if self.mirrored {
-            format!("mirrored-{surface}")
-        } else {
-            surface.to_string()
+        let mut name = surface.to_string();
+        if self.jitter == 0.0 {
+            name = format!("regular-{name}");
         }
+        if !self.warped {
+            name.push_str("-plain-uv");
+        }
+        if self.scale != [1.0; 3] {
+            name = format!("scaled-{name}");
+        }
+        if self.mirrored {
+            name = format!("mirrored-{name}");
+        }
+        match self.uv_noise {
+            UvNoise::None => {}
+            UvNoise::Jitter(_) => name.push_str("-uv-jitter"),
+            UvNoise::Quantize(_) => name.push_str("-uv-quantized"),
+        }
+        name
     }
 }
 
@@ -219,11 +307,16 @@ pub fn build(spec: &SceneSpec) -> Scene {
     let aspect = match surface {
         Surface::Torus => 2.5,
         Surface::Sphere => 2.0,
+        Surface::HeightField => 1.0,
     };
     let n_b = ((spec.target_vertices as f64 / aspect).sqrt().round() as usize).max(2);
     // Even, so that the mirror line a = 0.5 falls on a grid column.
     let n_a = (2 * ((aspect * n_b as f64 / 2.0).round() as usize)).max(4);
+    let (n_a, n_b) = spec.grid.unwrap_or((n_a, n_b));
+    let a_periodic = surface != Surface::HeightField;
     let b_periodic = surface == Surface::Torus;
+    let mut uv_rng = Pcg32::new(spec.seed, 0x0075_766e_6f69_7365);
+    let texture = |a: f64, b: f64| if spec.warped { warp(a, b) } else { [a, b] };
     let rows = if b_periodic { n_b } else { n_b + 1 };
 
     // Jitter per distinct surface point (column i of n_a, row j of `rows`); points on a seam move
@@ -232,7 +325,7 @@ pub fn build(spec: &SceneSpec) -> Scene {
     let mut jitter = vec![[0.0f64; 2]; n_a * rows];
     for j in 0..rows {
         for i in 0..n_a {
-            let mut d = [rng.symmetric(JITTER), rng.symmetric(JITTER)];
+            let mut d = [rng.symmetric(spec.jitter), rng.symmetric(spec.jitter)];
             if i == 0 || (spec.mirrored && i == n_a / 2) {
                 d[0] = 0.0;
             }
@@ -269,17 +362,45 @@ pub fn build(spec: &SceneSpec) -> Scene {
             // Chart parameters run 0..=1 across the seams; the geometry wraps, so both copies of a
             // seam vertex get bit-identical positions and normals.
             let (a, b) = ((i as f64 + d[0]) / n_a as f64, (j as f64 + d[1]) / n_b as f64);
-            let a_geometry = ((i % n_a) as f64 + d[0]) / n_a as f64;
+            let a_geometry = if a_periodic {
+                ((i % n_a) as f64 + d[0]) / n_a as f64
+            } else {
+                a
+            };
             let b_geometry = if b_periodic {
                 ((j % n_b) as f64 + d[1]) / n_b as f64
             } else {
                 b
             };
             let (position, p_a, p_b, normal) = surface_frame(surface, a_geometry, b_geometry);
+            let (position, p_a, p_b) = (mul(position, spec.scale), mul(p_a, spec.scale), mul(p_b, spec.scale));
+            let normal = if spec.scale == [1.0; 3] {
+                normal
+            } else {
+                normalize([
+                    normal[0] / spec.scale[0],
+                    normal[1] / spec.scale[1],
+                    normal[2] / spec.scale[2],
+                ])
+            };
             // The mirrored half reads the texture at a' = 1 - a, so da/ds = -da'/ds.
             let (chart_a, a_sign) = if in_mirrored_half(c) { (1.0 - a, -1.0) } else { (a, 1.0) };
-            let uv = warp(chart_a, b);
-            let (d_ds, d_dt) = warp_inverse_jacobian(chart_a, b);
+            let uv = match spec.uv_noise {
+                UvNoise::None => texture(chart_a, b),
+                UvNoise::Jitter(cells) => {
+                    let [s, t] = texture(chart_a, b);
+                    let ds = uv_rng.symmetric(cells / n_a as f64);
+                    [s + ds, t + uv_rng.symmetric(cells / n_b as f64)]
+                }
+                UvNoise::Quantize(steps) => {
+                    texture(chart_a, b).map(|x| (x * f64::from(steps)).round() / f64::from(steps))
+                }
+            };
+            let (d_ds, d_dt) = if spec.warped {
+                warp_inverse_jacobian(chart_a, b)
+            } else {
+                ([1.0, 0.0], [0.0, 1.0])
+            };
             let tangent = add(scale(p_a, a_sign * d_ds[0]), scale(p_b, d_ds[1]));
             let bitangent = add(scale(p_a, a_sign * d_dt[0]), scale(p_b, d_dt[1]));
             let sign = if dot(cross(normal, tangent), bitangent) < 0.0 {
@@ -398,6 +519,11 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
     (DVec3::from(a) * k).to_array()
+}
+
+/// Componentwise product.
+fn mul(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
 }
 
 pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -23,7 +23,7 @@ class Method(str, enum.Enum):
     LENGYEL = "lengyel"
     """Each triangle's unnormalized dP/du, as in Lengyel's listing."""
     ANGLE = "angle"
-    """Projected unit tangents weighted by the corner angle."""
+    """Projected unit tangents weighted by the corner angle in the tangent plane."""
     AREA = "area"
     """Unit face tangents weighted by triangle area."""
     UNIFORM = "uniform"

@@ -189,7 +189,7 @@ impl Corners {
     ///
     /// LENGYEL adds the unnormalized dP/du, so long or stretched triangles dominate; ANGLE projects
     /// the face tangent into the vertex's tangent plane, normalizes it and weights it by the
-    /// corner angle (as MikkTSpace does); AREA and UNIFORM add the unit face tangent weighted by
+    /// corner angle measured in that plane (as MikkTSpace does); AREA and UNIFORM add the unit face tangent weighted by
     /// area or by 1 (per-face averaging). Every weight is scaled by the triangle's confidence.
     fn weigh(&mut self, method: Method, faces: &Faces, batch: &TriangleBatch) {
         let lanes = lanes_in_use(batch.len);
@@ -233,7 +233,14 @@ impl Corners {
 }
 
 /// ANGLE at one corner: the face tangent projected into the vertex's tangent plane, and the
-/// corner angle between the edges `edges(Q1', Q2')` gives.
+/// angle between the corner's edges `edges(Q1', Q2')` projected into that plane too, as
+/// MikkTSpace measures it (on coarse meshes the plane angle, not the 3D one, is what the tangent
+/// plane around the vertex holds).
+///
+/// No projection is formed: projecting along `n` keeps an edge's triple product with `n`, so the
+/// projected edges `e1'`, `e2'` have `|e1' x e2'| = |F . n| / |n|` with `F = e1 x e2` the face
+/// normal, and `e1' . e2' = e1 . e2 - (n . e1)(n . e2) / |n|^2`. A zero, non-finite or extreme
+/// normal keeps the 3D angle.
 #[inline(always)]
 fn angle_corner(
     faces: &Faces,
@@ -242,8 +249,21 @@ fn angle_corner(
     edges: impl Fn(Vec3, Vec3) -> (Vec3, Vec3),
 ) -> (Vec3, f32) {
     let (e1, e2) = edges(lane3(&faces.edges[0], i), lane3(&faces.edges[1], i));
-    let angle = atan2_upper(faces.twice_area[i], e1.dot(e2));
-    (project(lane3(&faces.direction, i), lane3(normals, i)), angle)
+    let n = lane3(normals, i);
+    let n_squared = n.length_squared();
+    let inverse = 1.0 / n_squared;
+    let plane_sin = lane3(&faces.face_normal, i).dot(n).abs() * inverse.sqrt();
+    let plane_cos = e1.dot(e2) - n.dot(e1) * n.dot(e2) * inverse;
+    // Normals far from unit length (beyond 1e-15..1e15) would lose the angle to underflow.
+    let in_plane = (n_squared > 1e-30)
+        & (n_squared < 1e30)
+        & (plane_sin.abs() < f32::INFINITY)
+        & (plane_cos.abs() < f32::INFINITY);
+    // A select on the bits: the lane loop stays SIMD.
+    let keep = 0u32.wrapping_sub(u32::from(in_plane));
+    let select = |plane: f32, space: f32| f32::from_bits((plane.to_bits() & keep) | (space.to_bits() & !keep));
+    let (sin, cos) = (select(plane_sin, faces.twice_area[i]), select(plane_cos, e1.dot(e2)));
+    (project(lane3(&faces.direction, i), n), atan2_upper(sin, cos))
 }
 
 /// `T - N (N.T) / (N.N)`, normalized (zero when nothing is left): the projection needs no unit
