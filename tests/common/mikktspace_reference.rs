@@ -5,8 +5,9 @@
 //! buffer (or, unindexed, triangle `t` is vertices `3t..3t+3`), every face a triangle, and
 //! `setTSpaceBasic(face t, vert k)` lands in corner `3t + k` as `[x, y, z, sign]`.
 //!
-//! Used by `tests/mikktspace.rs` (through `tests/common/mod.rs`) and by `crates/compare/examples/chart.rs`
-//! (through `#[path]`), so it depends on nothing but the standard library and `mikktspace-sys`.
+//! Used by `tests/mikktspace.rs` and `tests/accuracy.rs` (through `tests/common/mod.rs`) and by
+//! `crates/compare/examples/chart.rs` and `accuracy_table.rs` (through `#[path]`), so it depends on
+//! nothing but the standard library and `mikktspace-sys`.
 
 /// A triangle mesh as mikktspace.c's callbacks read it.
 #[derive(Clone, Copy)]
@@ -110,4 +111,21 @@ pub fn reference_corners(
     };
     let mut result = vec![[0.0f32; 4]; geometry.corner_count()];
     generate(geometry, &mut result).then_some(result)
+}
+
+/// mikktspace.c's frames with each vertex taking its first corner's (in index order), and
+/// `(1, 0, 0, 1)` for a vertex no triangle uses: the per-vertex result a renderer that drops
+/// duplicated seam vertices gets, to compare per-vertex methods with.
+pub fn first_corner_frames(geometry: Geometry) -> Vec<[f32; 4]> {
+    let mut corners = vec![[0.0f32; 4]; geometry.corner_count()];
+    assert!(generate(geometry, &mut corners), "mikktspace.c failed");
+    let mut vertices = vec![[1.0, 0.0, 0.0, 1.0]; geometry.positions.len()];
+    let mut seen = vec![false; geometry.positions.len()];
+    for (c, corner) in corners.iter().enumerate() {
+        let v = geometry.indices.map_or(c, |indices| indices[c] as usize);
+        if !std::mem::replace(&mut seen[v], true) {
+            vertices[v] = *corner;
+        }
+    }
+    vertices
 }

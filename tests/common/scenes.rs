@@ -1,10 +1,12 @@
 //! Analytic scenes with exact tangents, and the accuracy metric measured against them.
 //!
-//! A scene is a parametric surface `P(a, b)` (a torus, or a sphere without its polar caps)
-//! tessellated irregularly in parameter space: grid vertices jittered by up to [`JITTER`] of a
-//! cell, each quad split along a random diagonal. Its texture map is a smooth warp `(s, t) =
-//! W(a, b)` (see [`warp`]), optionally mirrored on half the surface, so the true tangent `dP/ds`
-//! at every vertex follows in closed form from the chain rule:
+//! A scene is a parametric surface `P(a, b)` (a torus, a sphere without its polar caps, or a
+//! height field), optionally scaled non-uniformly, tessellated irregularly in parameter space:
+//! grid vertices jittered by up to [`JITTER`] of a cell (or not at all), each quad split along a
+//! random diagonal. Its texture map is a smooth warp `(s, t) = W(a, b)` (see [`warp`]) or the
+//! identity, optionally mirrored on half the surface, so the true tangent `dP/ds` at every vertex
+//! follows in closed form from the chain rule (texture coordinates jittered or quantised after the
+//! map keep the map's truth: the noise counts as error):
 //!
 //! `dP/ds = P_a * da/ds + P_b * db/ds`, with `[da/ds, db/ds]` the first column of `inverse(DW)`,
 //!
@@ -13,8 +15,9 @@
 //! side with identical position and normal, as exported assets have them; each copy's truth is
 //! that of its own side.
 //!
-//! Shared by `tests/accuracy.rs` (through `tests/common/mod.rs`) and `crates/compare/examples/chart.rs` (through
-//! `#[path]`), so there is one metric for both; it depends on the standard library only.
+//! Shared by `tests/accuracy.rs` (through `tests/common/mod.rs`) and `crates/compare/examples/chart.rs` and
+//! `accuracy_table.rs` (through `#[path]`), so there is one metric for all; it depends on the standard
+//! library and glam only.
 
 use std::f64::consts::{PI, TAU};
 
@@ -262,6 +265,55 @@ impl SceneSpec {
         }
         name
     }
+}
+
+/// The scenes `docs/accuracy.md` compares the default method with mikktspace.c on: the chart's
+/// three at small sizes, then a set grown so that no tuning can fit one shape: coarse grids (down
+/// to 12 x 8 quads, jittered and regular, with the warped or the plain texture map), a height
+/// field, tori and spheres squashed by non-uniform scales, and jittered or quantised texture
+/// coordinates.
+pub fn accuracy_specs() -> Vec<SceneSpec> {
+    let torus = SceneSpec::torus;
+    let sphere = SceneSpec::sphere;
+    let squashed_torus = [1.0, 0.5, 2.0];
+    let squashed_sphere = [1.6, 1.0, 0.6];
+    vec![
+        torus(500),
+        torus(5_000),
+        torus(50_000),
+        sphere(500),
+        sphere(5_000),
+        SceneSpec::mirrored_torus(500),
+        SceneSpec::mirrored_torus(5_000),
+        torus(0).with_grid(12, 8),
+        torus(0).with_grid(12, 8).regular(true),
+        torus(0).with_grid(12, 8).regular(false),
+        torus(0).with_grid(24, 16).regular(false),
+        torus(0).with_grid(48, 32).regular(false),
+        sphere(0).with_grid(12, 8).regular(false),
+        torus(0).with_grid(16, 12),
+        torus(0).with_grid(24, 16),
+        torus(0).with_grid(48, 32),
+        sphere(0).with_grid(12, 8),
+        sphere(0).with_grid(24, 16),
+        SceneSpec::mirrored_torus(0).with_grid(12, 8),
+        SceneSpec::mirrored_torus(0).with_grid(24, 16),
+        SceneSpec::height_field(0).with_grid(12, 12),
+        SceneSpec::height_field(0).with_grid(24, 24),
+        SceneSpec::height_field(5_000),
+        torus(0).with_grid(12, 8).with_scale(squashed_torus),
+        torus(500).with_scale(squashed_torus),
+        torus(5_000).with_scale(squashed_torus),
+        sphere(0).with_grid(12, 8).with_scale(squashed_sphere),
+        sphere(500).with_scale(squashed_sphere),
+        sphere(5_000).with_scale(squashed_sphere),
+        torus(500).with_uv_noise(UvNoise::Jitter(0.1)),
+        torus(5_000).with_uv_noise(UvNoise::Jitter(0.1)),
+        SceneSpec::height_field(5_000).with_uv_noise(UvNoise::Jitter(0.1)),
+        torus(500).with_uv_noise(UvNoise::Quantize(256)),
+        torus(5_000).with_uv_noise(UvNoise::Quantize(256)),
+        torus(50_000).with_uv_noise(UvNoise::Quantize(1024)),
+    ]
 }
 
 /// The exact frame at one vertex.

@@ -1,8 +1,6 @@
 //! The default method's accuracy against mikktspace.c's, scene by scene, on a set of analytic
-//! scenes grown beyond the chart's so that no tuning can fit one shape: coarse tessellations
-//! (down to 12 x 8 quads), a height field, non-uniformly scaled tori and spheres, a mirrored
-//! texture, and jittered or quantised texture coordinates (`tests/common/scenes.rs`; the truth is
-//! always the surface's analytic dP/ds, so texture noise counts as error).
+//! scenes grown beyond the chart's so that no tuning can fit one shape (`accuracy_specs` in
+//! `tests/common/scenes.rs`, which `tests/accuracy.rs` also checks).
 //!
 //! ```text
 //! cargo run --release -p tbasis-compare --example accuracy_table
@@ -21,53 +19,8 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::PathBuf;
 
-use scenes::{Accuracy, Scene, SceneSpec, UvNoise};
+use scenes::{Accuracy, Scene};
 use tbasis::{generate, Mesh, Options, Output};
-
-/// The scenes: the chart's three at small sizes, then the grown set.
-fn specs() -> Vec<SceneSpec> {
-    let torus = SceneSpec::torus;
-    let sphere = SceneSpec::sphere;
-    let squashed_torus = [1.0, 0.5, 2.0];
-    let squashed_sphere = [1.6, 1.0, 0.6];
-    vec![
-        torus(500),
-        torus(5_000),
-        torus(50_000),
-        sphere(500),
-        sphere(5_000),
-        SceneSpec::mirrored_torus(500),
-        SceneSpec::mirrored_torus(5_000),
-        torus(0).with_grid(12, 8),
-        torus(0).with_grid(12, 8).regular(true),
-        torus(0).with_grid(12, 8).regular(false),
-        torus(0).with_grid(24, 16).regular(false),
-        torus(0).with_grid(48, 32).regular(false),
-        sphere(0).with_grid(12, 8).regular(false),
-        torus(0).with_grid(16, 12),
-        torus(0).with_grid(24, 16),
-        torus(0).with_grid(48, 32),
-        sphere(0).with_grid(12, 8),
-        sphere(0).with_grid(24, 16),
-        SceneSpec::mirrored_torus(0).with_grid(12, 8),
-        SceneSpec::mirrored_torus(0).with_grid(24, 16),
-        SceneSpec::height_field(0).with_grid(12, 12),
-        SceneSpec::height_field(0).with_grid(24, 24),
-        SceneSpec::height_field(5_000),
-        torus(0).with_grid(12, 8).with_scale(squashed_torus),
-        torus(500).with_scale(squashed_torus),
-        torus(5_000).with_scale(squashed_torus),
-        sphere(0).with_grid(12, 8).with_scale(squashed_sphere),
-        sphere(500).with_scale(squashed_sphere),
-        sphere(5_000).with_scale(squashed_sphere),
-        torus(500).with_uv_noise(UvNoise::Jitter(0.1)),
-        torus(5_000).with_uv_noise(UvNoise::Jitter(0.1)),
-        SceneSpec::height_field(5_000).with_uv_noise(UvNoise::Jitter(0.1)),
-        torus(500).with_uv_noise(UvNoise::Quantize(256)),
-        torus(5_000).with_uv_noise(UvNoise::Quantize(256)),
-        torus(50_000).with_uv_noise(UvNoise::Quantize(1024)),
-    ]
-}
 
 /// The scene's size as the table shows it: its grid, and its vertex count.
 fn size(scene: &Scene) -> String {
@@ -91,25 +44,12 @@ fn library(scene: &Scene, options: &Options) -> Vec<[f32; 4]> {
 
 /// mikktspace.c's per-corner tangents, each vertex taking its first corner's.
 fn mikktspace_c(scene: &Scene) -> Vec<[f32; 4]> {
-    let geometry = mikktspace_reference::Geometry {
+    mikktspace_reference::first_corner_frames(mikktspace_reference::Geometry {
         positions: &scene.positions,
         normals: &scene.normals,
         texcoords: &scene.texcoords,
         indices: Some(&scene.indices),
-    };
-    let mut corners = vec![[0.0f32; 4]; scene.indices.len()];
-    assert!(
-        mikktspace_reference::generate(geometry, &mut corners),
-        "mikktspace.c failed"
-    );
-    let mut vertices = vec![[1.0, 0.0, 0.0, 1.0]; scene.vertex_count()];
-    let mut seen = vec![false; scene.vertex_count()];
-    for (&v, corner) in scene.indices.iter().zip(&corners) {
-        if !std::mem::replace(&mut seen[v as usize], true) {
-            vertices[v as usize] = *corner;
-        }
-    }
-    vertices
+    })
 }
 
 /// `ours / theirs`, shown to three places.
@@ -141,7 +81,7 @@ fn main() {
     // Scenes where the default is less accurate at all, and by more than 0.1%; the largest ratios.
     let (mut worse_mean, mut worse_p99, mut clearly_worse) = (0, 0, 0);
     let (mut worst_mean, mut worst_p99) = ((0.0f64, String::new()), (0.0f64, String::new()));
-    let specs = specs();
+    let specs = scenes::accuracy_specs();
     for spec in &specs {
         let scene = scenes::build(spec);
         let ours: Accuracy = scenes::accuracy(&scene, &library(&scene, &Options::default()));
