@@ -8,7 +8,7 @@ use crate::report::{count_flags, Report};
 use crate::robust::{accumulate, resolve};
 use crate::scratch::{self, Scratch};
 use crate::views::strided::{Footprint, StridedMut};
-use crate::{legacy, mikktspace, parallel, validate, vertex_corners};
+use crate::{legacy, mikktspace, parallel, simd, validate, vertex_corners};
 
 /// Computes a unit tangent and handedness for every vertex of `mesh` into `output`.
 ///
@@ -137,7 +137,7 @@ pub(crate) fn resolve_measured(
     let workers = parallel::worker_count(options.threads, mesh);
     let accumulate_range = |part: &mut Scratch| match (options.degenerate_policy, mesh.texcoords) {
         (DegeneratePolicy::Legacy, Some(uvs)) => legacy::accumulate(mesh, uvs, options.flip_v, part),
-        _ => accumulate::accumulate(mesh, options, part),
+        _ => simd::run(|| accumulate::accumulate(mesh, options, part)),
     };
     let mut found = if workers == 1 {
         accumulate_range(scratch)?
@@ -167,7 +167,7 @@ pub(crate) fn resolve_measured(
                 legacy::resolve(mesh, part, out);
                 0
             }
-            _ => resolve::write_measured(mesh, policy, part, out, &mut written),
+            _ => simd::run(|| resolve::write_measured(mesh, policy, part, out, &mut written)),
         };
         (written, deferred)
     };

@@ -71,6 +71,8 @@ mod reusable;
 mod robust;
 mod scratch;
 mod seam_split;
+#[allow(unsafe_code)]
+mod simd;
 #[cfg(test)]
 mod test_rng;
 #[cfg(test)]

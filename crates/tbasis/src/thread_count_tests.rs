@@ -19,7 +19,7 @@ use crate::{
 /// and collapsed in patches, triangles mostly between nearby vertices (so a split pays off and
 /// the workers really run) with a few long ones across ranges.
 #[derive(Debug)]
-struct RandomMesh {
+pub(crate) struct RandomMesh {
     positions: Vec<[f32; 3]>,
     normals: Vec<[f32; 3]>,
     texcoords: Vec<[f32; 2]>,
@@ -27,7 +27,7 @@ struct RandomMesh {
 }
 
 impl RandomMesh {
-    fn new(vertex_count: usize, seed: u64, indexed: bool) -> Self {
+    pub(crate) fn new(vertex_count: usize, seed: u64, indexed: bool) -> Self {
         let mut bits = TestRng(seed | 1);
         let width = (vertex_count as f32).sqrt().ceil() as usize;
         let mut mesh = RandomMesh {
@@ -85,7 +85,7 @@ impl RandomMesh {
         mesh
     }
 
-    fn mesh(&self) -> Mesh<'_> {
+    pub(crate) fn mesh(&self) -> Mesh<'_> {
         Mesh {
             positions: Strided::from_slice(&self.positions),
             normals: Strided::from_slice(&self.normals),

@@ -63,6 +63,7 @@ impl Faces {
     /// Solves `Q1 = s1 T + t1 B`, `Q2 = s2 T + t2 B` for `T` (Lengyel 2001) in every lane, and
     /// marks degenerate the lanes with a non-finite input or a UV or position quality below
     /// `threshold`.
+    #[inline(always)]
     fn solve(&mut self, batch: &TriangleBatch, v_sign: f32, threshold: f32) {
         let [p0, p1, p2] = &batch.position;
         let [w0, w1, w2] = &batch.texcoord;
@@ -160,6 +161,7 @@ impl Sides {
     /// A corner is right-handed when its triangle's UV determinant is positive, unless its vertex
     /// normal faces away from the winding, which turns the frame's handedness; a non-finite normal
     /// says nothing about it.
+    #[inline(always)]
     fn classify(&mut self, faces: &Faces, batch: &TriangleBatch) {
         for k in 0..3 {
             for i in 0..lanes_in_use(batch.len) {
@@ -191,6 +193,7 @@ impl Corners {
     /// the face tangent into the vertex's tangent plane, normalizes it and weights it by the
     /// corner angle measured in that plane (as MikkTSpace does); AREA and UNIFORM add the unit face tangent weighted by
     /// area or by 1 (per-face averaging). Every weight is scaled by the triangle's confidence.
+    #[inline(always)]
     fn weigh(&mut self, method: Method, faces: &Faces, batch: &TriangleBatch) {
         let lanes = lanes_in_use(batch.len);
         // One loop per case, with nothing to decide inside: each compiles to SIMD.
@@ -327,6 +330,7 @@ fn atan2_upper(y: f32, x: f32) -> f32 {
 ///
 /// Per-triangle and per-corner arithmetic runs a batch of triangles at a time, lane by lane; the
 /// sums are added one triangle at a time, in triangle order.
+#[inline(always)]
 pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Result<Report, Error> {
     let Some(texcoords) = mesh.texcoords else {
         return mark_referenced(mesh, scratch);

@@ -99,6 +99,7 @@ impl<'m, K: Fn(&[usize; 3]) -> bool> BatchReader<'m, K> {
     }
 
     /// Fills `batch` with the next triangles; false once every triangle has been read.
+    #[inline(always)]
     pub fn fill(&mut self, batch: &mut TriangleBatch) -> Result<bool, Error> {
         batch.len = 0;
         while batch.len < LANES && self.next < self.end {

@@ -92,6 +92,7 @@ pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
 /// Without an `output` (the per-corner output) each vertex keeps its frame in its sums instead
 /// ([`VertexSums::keep_frame`]), and a measured mirror-fold vertex also keeps its other side's
 /// frame when that side's sum is usable ([`resolve_other_side`], flag [`flag::SIDE_FRAME`]).
+#[inline(always)]
 pub fn write_measured(
     mesh: &Mesh,
     policy: DegeneratePolicy,
@@ -195,6 +196,7 @@ impl ResolvedLanes {
     }
 
     /// Vertices `first..first + sums.len()`.
+    #[inline(always)]
     fn resolve(&mut self, mesh: &Mesh, first: usize, sums: &[VertexSums]) {
         for (i, sums) in sums.iter().enumerate() {
             set_lane3(&mut self.raw_normal, i, mesh.normals.get(first + i));

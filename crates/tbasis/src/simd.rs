@@ -1,0 +1,134 @@
+//! Runtime choice of the widest vector instructions the CPU has, for the robust path's kernels.
+//!
+//! The kernels are written once, as loops over lanes that LLVM vectorizes (`robust::batch`). A
+//! build for the default x86-64 target may only assume SSE2, four lanes per instruction; here the
+//! same kernels are compiled a second time with AVX2 enabled (eight lanes) and that copy runs when
+//! the CPU supports it. Both copies perform the same IEEE operations in the same order on every
+//! lane: no fused multiply-add (FMA is not enabled, and Rust never contracts `a * b + c`), square
+//! roots and divisions correctly rounded in both, and sums added one triangle at a time outside
+//! the lane loops. So every path gives the same bits (`tests` below run each path the machine
+//! has and compare).
+//!
+//! This module and the strided views are the crate's only `unsafe` code: calling a function
+//! compiled for AVX2 is sound only on a CPU that has it, which is checked right before.
+
+/// A set of vector instructions the kernels can be compiled for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Path {
+    /// What the build target guarantees (SSE2 on x86-64).
+    Baseline,
+    /// AVX2, chosen at run time.
+    Avx2,
+}
+
+impl Path {
+    /// Whether this CPU can run the path.
+    pub fn supported(self) -> bool {
+        match self {
+            Path::Baseline => true,
+            #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+            Path::Avx2 => std::is_x86_feature_detected!("avx2"),
+            #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+            Path::Avx2 => false,
+        }
+    }
+
+    /// The widest supported path (a test may pin one on its thread).
+    pub fn best() -> Path {
+        #[cfg(test)]
+        if let Some(path) = tests::PINNED.with(core::cell::Cell::get) {
+            return path;
+        }
+        if Path::Avx2.supported() {
+            Path::Avx2
+        } else {
+            Path::Baseline
+        }
+    }
+}
+
+/// Runs `kernel` compiled for the best path this CPU supports. `kernel` and what it calls must be
+/// inlined into it (`#[inline(always)]`) for the wider copy to exist.
+#[inline(always)]
+pub(crate) fn run<R>(kernel: impl FnOnce() -> R) -> R {
+    match Path::best() {
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        // SAFETY: `best` returns Avx2 only when the CPU reports AVX2.
+        Path::Avx2 => unsafe { with_avx2(kernel) },
+        _ => kernel(),
+    }
+}
+
+/// `kernel` compiled with AVX2 enabled.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2")]
+unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
+    kernel()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::Path;
+    use crate::thread_count_tests::RandomMesh;
+    use crate::{generate, Mesh, Method, Options, Output};
+
+    std::thread_local! {
+        /// The path [`Path::best`] returns on this thread, when set.
+        pub static PINNED: core::cell::Cell<Option<Path>> = const { core::cell::Cell::new(None) };
+    }
+
+    /// On random meshes with mirror folds, collapsed and quantised UVs, zero and NaN normals, long
+    /// triangles (`thread_count_tests`), indexed and not.
+    #[test]
+    fn every_supported_path_gives_the_same_bits() {
+        for (vertex_count, seed, indexed) in [(3000, 11, true), (5000, 12, true), (1000, 13, false)] {
+            let random = RandomMesh::new(vertex_count, seed, indexed);
+            compare_paths(&random.mesh());
+        }
+    }
+
+    /// Runs every method and policy of the robust path on `mesh` along each supported path.
+    fn compare_paths(mesh: &Mesh) {
+        let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
+            .into_iter()
+            .filter(|p| p.supported())
+            .collect();
+        if paths.len() < 2 {
+            // CI's machines have AVX2: there the comparison must run.
+            assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
+            eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
+        }
+        for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
+            for policy in [
+                crate::DegeneratePolicy::Skip,
+                crate::DegeneratePolicy::Inherit,
+                crate::DegeneratePolicy::Legacy,
+            ] {
+                let options = Options::default()
+                    .with_method(method)
+                    .with_policy(policy)
+                    .with_threads(1);
+                let run = |path: Path| {
+                    PINNED.with(|p| p.set(Some(path)));
+                    let mut tangents = vec![[0.0f32; 4]; mesh.vertex_count()];
+                    let report = generate(mesh, &options, &mut Output::new(&mut tangents[..]));
+                    PINNED.with(|p| p.set(None));
+                    (
+                        tangents.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>(),
+                        format!("{report:?}"),
+                    )
+                };
+                let baseline = run(Path::Baseline);
+                for &path in &paths[1..] {
+                    assert!(
+                        run(path) == baseline,
+                        "{method:?} {policy:?}: {path:?} differs from the baseline"
+                    );
+                }
+            }
+        }
+    }
+}
