@@ -68,7 +68,7 @@ struct Buffers<'a> {
     /// Per corner: the tangent and its orientation (1: preserving, w = +1).
     tangents: &'a mut [Vec3],
     orientation: &'a mut [u8],
-    /// Memory for one phase at a time: edge pairing, then groups.
+    /// Memory for one phase at a time: welding, edge pairing, then groups.
     phase: &'a mut [u8],
 }
 
