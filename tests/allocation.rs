@@ -99,8 +99,13 @@ fn caller_scratch_means_no_allocation() {
     // The INHERIT cases need propagation, the mirror fold both handedness sums.
     let cases = [unit_quad(), mirror_fold(), quantized_uv_sphere()];
     for case in &cases {
-        // Not MIKKTSPACE: its weld allocates its own memory on every call (README: "Memory").
-        for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
+        for method in [
+            Method::Lengyel,
+            Method::Angle,
+            Method::Area,
+            Method::Uniform,
+            Method::Mikktspace,
+        ] {
             for policy in [
                 DegeneratePolicy::Legacy,
                 DegeneratePolicy::Skip,

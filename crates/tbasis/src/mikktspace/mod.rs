@@ -275,14 +275,13 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let ids = &b.ids[..good];
 
     // 7. Each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19).
-    let ends = threads::ranges(threads, good);
-    let parts = threads::split(&mut b.tangent_s[..good], &ends, 1)
-        .into_iter()
-        .zip(threads::split(&mut b.tangent_t[..good], &ends, 1))
-        .zip(threads::split(&mut b.flags[..good], &ends, 1))
-        .collect();
+    let ranges = threads::ranges(threads, good);
+    let ends = ranges.ends();
+    let parts = threads::split(&mut b.tangent_s[..good], ends, 1)
+        .zip(threads::split(&mut b.tangent_t[..good], ends, 1))
+        .zip(threads::split(&mut b.flags[..good], ends, 1));
     let welded = &*b.welded;
-    threads::run(&ends, parts, |first, ((s, t), flags)| {
+    threads::run(ends, parts, |first, ((s, t), flags)| {
         let end = first + flags.len();
         faces::derivatives(packed, welded, &order[first..end], s, t, flags)
     });
@@ -331,25 +330,26 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         flags: &b.flags[..good],
         order,
     };
-    let ends = threads::ranges(threads, good);
+    let ranges = threads::ranges(threads, good);
+    let ends = ranges.ends();
     // Each range's per-corner arrays begin with the triangle of its first good triangle.
-    let triangle_ends: Vec<usize> = ends
-        .iter()
-        .map(|&end| if end == good { triangles } else { order[end] as usize })
-        .collect();
+    let triangle_ranges =
+        threads::Ranges::from_ends(
+            ends.iter()
+                .map(|&end| if end == good { triangles } else { order[end] as usize }),
+        );
+    let triangle_ends = triangle_ranges.ends();
     let starts = core::iter::once(0).chain(triangle_ends.iter().copied());
     let mut first_terms = Some(terms);
-    let parts = threads::split(b.tangents, &triangle_ends, 3)
-        .into_iter()
-        .zip(threads::split(b.orientation, &triangle_ends, 3))
+    let parts = threads::split(b.tangents, triangle_ends, 3)
+        .zip(threads::split(b.orientation, triangle_ends, 3))
         .zip(starts.zip(ends.iter()))
-        .map(|((tangents, orientation), (first_triangle, &end))| {
+        .map(move |((tangents, orientation), (first_triangle, &end))| {
             (tangents, orientation, first_triangle, end as u32, first_terms.take())
-        })
-        .collect();
+        });
     let groups = &groups;
     threads::run(
-        &ends,
+        ends,
         parts,
         |first, (tangents, orientation, first_triangle, end, terms)| {
             let mut out = tspace::Written {

@@ -64,7 +64,8 @@ pub(crate) fn pair_edges(ids: &[[u32; 3]], values: &[u32], neighbors: &mut [[u32
         *slot = edge;
         *key = smaller_value(edge);
     }
-    quicksort_toward(keys, order, last);
+    // The quicksort's pending parts live in arrays the second step fills later.
+    quicksort_toward(keys, order, last, [&mut *head, &mut *tail, &mut *stamp]);
     let first_of_last = keys.iter().rposition(|&key| key != last).map_or(0, |p| p + 1);
     let run = &mut order[first_of_last..];
     // The third pass sorts each run of equal i1 by triangle, all but the very last one.
@@ -141,15 +142,14 @@ fn pair(neighbors: &mut [[u32; 3]], a: u32, b: u32) {
 
 /// mikktspace.c's `QuickSortEdges` on `keys` (carrying `edges` along), seed and pivots as in the C,
 /// but only into the parts that hold a key `last`: where those edges end up, and in what order,
-/// depends on nothing else.
-fn quicksort_toward(keys: &mut [u32], edges: &mut [u32], last: u32) {
+/// depends on nothing else. Pending parts (disjoint, two keys or more) wait in `stack` as left
+/// end, right end and seed, one array each.
+fn quicksort_toward(keys: &mut [u32], edges: &mut [u32], last: u32, stack: [&mut [u32]; 3]) {
     const SEED: u32 = 39_871_946;
-    let mut parts = vec![(0usize, keys.len() - 1, SEED)];
-    while let Some((left, right, seed)) = parts.pop() {
+    let mut pending = Pending { stack, top: 0, last };
+    pending.push(keys, 0, keys.len() - 1, SEED);
+    while let Some((left, right, seed)) = pending.pop() {
         let count = right - left + 1;
-        if count < 2 || !keys[left..=right].contains(&last) {
-            continue;
-        }
         if count == 2 {
             if keys[left] > keys[right] {
                 keys.swap(left, right);
@@ -178,11 +178,34 @@ fn quicksort_toward(keys: &mut [u32], edges: &mut [u32], last: u32) {
             }
         }
         if (left as isize) < r {
-            parts.push((left, r as usize, seed));
+            pending.push(keys, left, r as usize, seed);
         }
         if (l as usize) < right {
-            parts.push((l as usize, right, seed));
+            pending.push(keys, l as usize, right, seed);
         }
+    }
+}
+
+/// The quicksort's pending parts that hold the key `last`: left ends, right ends and seeds.
+struct Pending<'a> {
+    stack: [&'a mut [u32]; 3],
+    top: usize,
+    last: u32,
+}
+
+impl Pending<'_> {
+    fn push(&mut self, keys: &[u32], left: usize, right: usize, seed: u32) {
+        if left < right && keys[left..=right].contains(&self.last) {
+            let [lefts, rights, seeds] = &mut self.stack;
+            (lefts[self.top], rights[self.top], seeds[self.top]) = (left as u32, right as u32, seed);
+            self.top += 1;
+        }
+    }
+
+    fn pop(&mut self) -> Option<(usize, usize, u32)> {
+        self.top = self.top.checked_sub(1)?;
+        let [lefts, rights, seeds] = &self.stack;
+        Some((lefts[self.top] as usize, rights[self.top] as usize, seeds[self.top]))
     }
 }
 

@@ -15,7 +15,7 @@
 
 use super::arena::Arena;
 use super::attributes::Attributes;
-use super::threads;
+use super::threads::{self, Ranges};
 use super::vector::Vec3;
 use super::NONE;
 use crate::error::Error;
@@ -125,17 +125,17 @@ pub(crate) fn weld(
     }
 
     // 3. Every cell split and welded (`MergeVertsFast`), ranges of cells on separate threads.
-    let ends = cell_ranges(threads, starts);
-    let bounds: Vec<usize> = ends.iter().map(|&cell| starts[cell] as usize).collect();
+    let cell_ranges = cell_ranges(threads, starts);
+    let ends = cell_ranges.ends();
+    let bounds = Ranges::from_ends(ends.iter().map(|&cell| starts[cell] as usize));
+    let bounds = bounds.ends();
     let first_cells = core::iter::once(0).chain(ends.iter().copied());
-    let parts = threads::split(positions, &bounds, 1)
-        .into_iter()
-        .zip(threads::split(entries, &bounds, 1))
-        .zip(threads::split(stack, &bounds, 1))
-        .zip(first_cells.zip(ends.iter().copied()))
-        .collect();
+    let parts = threads::split(positions, bounds, 1)
+        .zip(threads::split(entries, bounds, 1))
+        .zip(threads::split(stack, bounds, 1))
+        .zip(first_cells.zip(ends.iter().copied()));
     threads::run(
-        &bounds,
+        bounds,
         parts,
         |first, (((positions, entries), stack), (first_cell, end_cell))| {
             for k in first_cell..end_cell {
@@ -167,19 +167,24 @@ pub(crate) fn weld(
     count as usize
 }
 
-/// The exclusive ends of the ranges of grid cells the workers take, about equal in corners.
-fn cell_ranges(threads: u32, starts: &[u32]) -> Vec<usize> {
+/// The ranges of grid cells the workers take, about equal in corners.
+fn cell_ranges(threads: u32, starts: &[u32]) -> Ranges {
     let corner_count = starts[GRID_CELLS] as usize;
     let targets = threads::ranges(threads, corner_count / 3);
-    let mut ends: Vec<usize> = targets
-        .iter()
-        .map(|&t| starts.partition_point(|&s| (s as usize) < 3 * t).min(GRID_CELLS))
-        .collect();
-    if let Some(last) = ends.last_mut() {
-        *last = GRID_CELLS;
-    }
-    ends.dedup();
-    ends
+    let count = targets.ends().len();
+    let mut previous = 0;
+    Ranges::from_ends(targets.ends().iter().enumerate().filter_map(|(i, &t)| {
+        // The last range ends the grid; an empty one is dropped.
+        let end = if i + 1 == count {
+            GRID_CELLS
+        } else {
+            starts.partition_point(|&s| (s as usize) < 3 * t).min(GRID_CELLS)
+        };
+        (end > previous).then(|| {
+            previous = end;
+            end
+        })
+    }))
 }
 
 /// The bits of `x`, with -0 as +0 so that values equal under `==` have equal bits.
