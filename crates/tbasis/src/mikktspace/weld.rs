@@ -28,9 +28,10 @@ const UNEQUAL: u32 = 1 << 31;
 
 /// Working memory, all of it reused by the phases after the weld.
 pub(crate) struct WeldScratch<'a> {
-    /// Per vertex: its grid cell, or'd with [`UNEQUAL`]; per cell, where its corners start, and
-    /// the next free place.
+    /// Per vertex: its grid cell, or'd with [`UNEQUAL`], and a hash of its attributes; per cell,
+    /// where its corners start, and the next free place.
     cells: &'a mut [u32],
+    hashes: &'a mut [u32],
     starts: &'a mut [u32],
     cursors: &'a mut [u32],
     /// Per corner, in cell order: its position, and (corner, vertex or [`NONE`] when the vertex is
@@ -49,6 +50,7 @@ impl<'a> WeldScratch<'a> {
     pub fn take(arena: &mut Arena<'a>, vertex_count: usize, corner_count: usize) -> Result<Self, Error> {
         Ok(WeldScratch {
             cells: arena.take(vertex_count)?,
+            hashes: arena.take(vertex_count)?,
             starts: arena.take(GRID_CELLS + 1)?,
             cursors: arena.take(GRID_CELLS)?,
             positions: arena.take(corner_count)?,
@@ -74,6 +76,7 @@ pub(crate) fn weld(
 ) -> usize {
     let WeldScratch {
         cells,
+        hashes,
         starts,
         cursors,
         positions,
@@ -101,11 +104,13 @@ pub(crate) fn weld(
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
 
     // 2. Corners by grid cell, in corner order within a cell.
-    for (v, cell) in cells.iter_mut().enumerate() {
+    for (v, (cell, hash)) in cells.iter_mut().zip(hashes.iter_mut()).enumerate() {
         let key = attributes.key(v as u32);
         let unequal = if key.iter().any(|x| x.is_nan()) { UNEQUAL } else { 0 };
         *cell = grid_cell(min[axis], max[axis], key[axis]) as u32 | unequal;
+        *hash = hash_of(&key.map(canonical_bits));
     }
+    let hashes = &*hashes;
     starts.fill(0);
     for &v in corners.iter() {
         starts[(cells[v as usize] & !UNEQUAL) as usize + 1] += 1;
@@ -141,7 +146,8 @@ pub(crate) fn weld(
             for k in first_cell..end_cell {
                 let cell = starts[k] as usize - first..starts[k + 1] as usize - first;
                 if cell.len() > 1 {
-                    split_and_weld(attributes, &mut positions[cell.clone()], &mut entries[cell], stack);
+                    let equal = Equality { attributes, hashes };
+                    split_and_weld(&equal, &mut positions[cell.clone()], &mut entries[cell], stack);
                 }
             }
         },
@@ -187,6 +193,15 @@ fn cell_ranges(threads: u32, starts: &[u32]) -> Ranges {
     }))
 }
 
+/// A multiplicative hash of the eight canonical floats.
+fn hash_of(bits: &[u32; 8]) -> u32 {
+    let mut h = 0u64;
+    for &b in bits {
+        h = (h ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+    (h >> 32) as u32
+}
+
 /// The bits of `x`, with -0 as +0 so that values equal under `==` have equal bits.
 #[inline(always)]
 fn canonical_bits(x: f32) -> u32 {
@@ -200,7 +215,7 @@ fn canonical_bits(x: f32) -> u32 {
 /// `MergeVertsFast` on one grid cell, its recursion on `stack` (a cell can split hundreds deep;
 /// pending parts are disjoint and hold two entries or more, so with the partition's pairs the
 /// stack needs as many slots as the cell has entries).
-fn split_and_weld(attributes: &Attributes, positions: &mut [Vec3], entries: &mut [[u32; 3]], stack: &mut [[u32; 2]]) {
+fn split_and_weld(equal: &Equality, positions: &mut [Vec3], entries: &mut [[u32; 3]], stack: &mut [[u32; 2]]) {
     stack[0] = [0, entries.len() as u32 - 1];
     let mut top = 1;
     while top > 0 {
@@ -226,7 +241,7 @@ fn split_and_weld(attributes: &Attributes, positions: &mut [Vec3], entries: &mut
             continue;
         }
         if separator >= max[axis] || separator <= min[axis] {
-            weld_run(attributes, &mut entries[left..=right]);
+            weld_run(equal, &mut entries[left..=right]);
             continue;
         }
         // Pending parts lie outside this one and hold two entries or more: the slots past them
@@ -277,13 +292,26 @@ fn partition(
     (k.saturating_sub(1), k)
 }
 
+/// Which vertices compare equal in all eight floats (neither has a `NaN`: those are
+/// [`UNEQUAL`]): the same vertex, or equal hashes and equal attributes.
+struct Equality<'a> {
+    attributes: &'a Attributes<'a>,
+    hashes: &'a [u32],
+}
+
+impl Equality<'_> {
+    fn equal(&self, a: u32, b: u32) -> bool {
+        let key = |v: u32| self.attributes.key(v).map(canonical_bits);
+        a == b || (self.hashes[a as usize] == self.hashes[b as usize] && key(a) == key(b))
+    }
+}
+
 /// The final step on a part whose widest extent is one value: each corner takes as representative
 /// the first corner before it, in the part's order, equal to it in all eight floats.
-fn weld_run(attributes: &Attributes, part: &mut [[u32; 3]]) {
+fn weld_run(equality: &Equality, part: &mut [[u32; 3]]) {
     /// Up to this many corners (a vertex's few corners, the usual case) the C's own search is
     /// cheaper than sorting.
     const SEARCH_LIMIT: usize = 16;
-    let key = |vertex: u32| attributes.key(vertex).map(canonical_bits);
     let first_vertex = part.iter().map(|e| e[1]).find(|&v| v != NONE);
     if part.iter().all(|e| e[1] == NONE || Some(e[1]) == first_vertex) {
         // One vertex's corners (and unequal ones, which stay alone): all equal the first.
@@ -294,33 +322,35 @@ fn weld_run(attributes: &Attributes, part: &mut [[u32; 3]]) {
         }
         return;
     }
-    if part.len() <= SEARCH_LIMIT {
-        let mut keys = [[0u32; 8]; SEARCH_LIMIT];
-        for at in 0..part.len() {
-            let vertex = part[at][1];
+    // Each corner takes the first equal one before it among `run`, in place order.
+    let take_first_equal = |run: &mut [[u32; 3]]| {
+        for at in 1..run.len() {
+            let vertex = run[at][1];
             if vertex == NONE {
                 continue;
             }
-            keys[at] = key(vertex);
-            let equal = |e: &(usize, &[u32; 3])| e.1[1] == vertex || (e.1[1] != NONE && keys[e.0] == keys[at]);
-            if let Some((_, first)) = part[..at].iter().enumerate().find(equal) {
-                part[at][2] = first[0];
+            if let Some(first) = run[..at].iter().find(|e| e[1] != NONE && equality.equal(e[1], vertex)) {
+                run[at][2] = first[0];
             }
         }
+    };
+    if part.len() <= SEARCH_LIMIT {
+        take_first_equal(part);
         return;
     }
-    // The part's order is not needed after this: sort it by attributes, then by place.
+    // The part's order is not needed after this: sort it by hash, then by place, so that equal
+    // corners lie in one run of a hash (usually alone there), first to last in place order.
     for (at, entry) in part.iter_mut().enumerate() {
         entry[2] = at as u32;
     }
-    let sort_key = |e: &[u32; 3]| (e[1] == NONE, if e[1] == NONE { [0; 8] } else { key(e[1]) }, e[2]);
-    part.sort_unstable_by_key(sort_key);
+    let hash = |e: &[u32; 3]| (e[1] != NONE).then(|| equality.hashes[e[1] as usize]);
+    part.sort_unstable_by_key(|e| (e[1] == NONE, hash(e), e[2]));
+    for entry in part.iter_mut() {
+        entry[2] = entry[0];
+    }
     // Unequal corners each make a run of their own.
-    for run in part.chunk_by_mut(|a, b| a[1] != NONE && b[1] != NONE && key(a[1]) == key(b[1])) {
-        let first = run[0][0];
-        for entry in run.iter_mut() {
-            entry[2] = first;
-        }
+    for run in part.chunk_by_mut(|a, b| a[1] != NONE && hash(a) == hash(b)) {
+        take_first_equal(run);
     }
 }
 
@@ -386,6 +416,13 @@ mod tests {
             mesh: &mesh,
             flip_v: false,
         };
+        let hashes: Vec<u32> = (0..4)
+            .map(|v| hash_of(&attributes.key(v).map(canonical_bits)))
+            .collect();
+        let equality = Equality {
+            attributes: &attributes,
+            hashes: &hashes,
+        };
         let mut part = [
             [10, 1, 10],
             [11, NONE, 11],
@@ -394,15 +431,15 @@ mod tests {
             [14, 2, 14],
             [15, 1, 15],
         ];
-        weld_run(&attributes, &mut part);
+        weld_run(&equality, &mut part);
         assert_eq!(part.map(|e| e[2]), [10, 11, 10, 13, 13, 10]);
         // One vertex's corners all take the first; the sorting path agrees with the search.
         let mut one = [[20, 2, 20], [21, NONE, 21], [22, 2, 22]];
-        weld_run(&attributes, &mut one);
+        weld_run(&equality, &mut one);
         assert_eq!(one.map(|e| e[2]), [20, 21, 20]);
         let vertex_of = |c: u32| [1, NONE, 0, 2, 2][c as usize % 5];
         let mut long: Vec<[u32; 3]> = (0..40u32).rev().map(|c| [c, vertex_of(c), c]).collect();
-        weld_run(&attributes, &mut long);
+        weld_run(&equality, &mut long);
         for &[c, vertex, first] in &long {
             let equal = |d: u32| match (vertex_of(d), vertex) {
                 (NONE, _) | (_, NONE) => d == c,
