@@ -8,9 +8,9 @@
 //! (a `-0.0` against a `+0.0`), a cell whose midpoint is not finite is left unwelded, and the
 //! representative's index decides which edges end mikktspace.c's edge sort (see `neighbors`). So
 //! the splitting is replayed step by step, its recursion on a stack, and its final quadratic search
-//! compares vertex numbers first: corners of one vertex are equal unless a float is `NaN`, and only
-//! corners of different vertices at the same position (seams, unwelded exports) read their
-//! attributes. Cells are independent, so ranges of them run on separate threads.
+//! compares vertex numbers first: corners of one vertex are equal unless a float is `NaN`; corners
+//! of different vertices at the same position (seams, unwelded exports) compare per-vertex hashes,
+//! and read their attributes only when those agree. Cells are independent, so ranges of them run on separate threads.
 #![forbid(unsafe_code)]
 
 use super::arena::Arena;
