@@ -107,7 +107,8 @@ impl Args {
             .with_method(method)
             .with_policy(degenerate_policy)
             .with_flip_v(true)
-            // Files run in parallel instead (`--jobs`), and primitives within a file.
+            // Files run in parallel (`--jobs`), then primitives within a file, then each call
+            // (`convert::compute_all`).
             .with_threads(1)
     }
 

@@ -99,10 +99,14 @@ fn primitive_name(json: &Value, m: usize, p: usize) -> String {
 fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result<Vec<Computed>, String> {
     let results: Vec<Mutex<Option<Result<Computed, String>>>> = sources.iter().map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
+    // Threads the primitives leave idle (a file of one large primitive) go to each call; the bits
+    // are the same on any thread count.
+    let per_call = (settings.threads / sources.len().max(1)).max(1);
+    let options = settings.options.with_threads(per_call as u32);
     let work = || loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         let Some(source) = sources.get(k) else { break };
-        let result = primitive::compute(source, &asset.root, &asset.buffers, &settings.options)
+        let result = primitive::compute(source, &asset.root, &asset.buffers, &options)
             .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)));
         *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
     };
