@@ -54,9 +54,12 @@ fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
 
 /// The exclusive ends of `workers` near-equal consecutive ranges of `vertex_count` vertices.
 pub fn range_ends(vertex_count: usize, workers: usize) -> Vec<usize> {
-    (1..=workers)
-        .map(|w| (vertex_count as u128 * w as u128 / workers as u128) as usize)
-        .collect()
+    ends(vertex_count, workers).collect()
+}
+
+/// [`range_ends`] one at a time, without allocating.
+pub fn ends(count: usize, workers: usize) -> impl Iterator<Item = usize> {
+    (1..=workers).map(move |w| (count as u128 * w as u128 / workers as u128) as usize)
 }
 
 /// Runs `job` on every part, the first on the calling thread and the others on scoped threads,

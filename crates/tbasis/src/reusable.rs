@@ -134,9 +134,8 @@ impl ScratchBuffer {
     fn at_least(&mut self, needed: Option<usize>) -> Result<&mut [u8], Error> {
         let needed = needed.ok_or(Error::SizeOverflow)?;
         if self.bytes.len() < needed {
-            let more = needed - self.bytes.len();
-            self.bytes.try_reserve_exact(more).map_err(|_| Error::OutOfMemory)?;
-            self.bytes.resize(needed, 0);
+            // The old contents mean nothing: a fresh zeroed block costs only the pages used.
+            self.bytes = crate::scratch::zeroed_bytes(needed)?;
         }
         Ok(&mut self.bytes)
     }

@@ -45,7 +45,7 @@ pub(crate) fn ranges(threads: u32, triangles: usize) -> Ranges {
     let workers = (threads.max(1) as usize)
         .min(triangles / MIN_TRIANGLES_PER_WORKER)
         .clamp(1, MAX_RANGES);
-    Ranges::from_ends((1..=workers).map(|w| (triangles as u128 * w as u128 / workers as u128) as usize))
+    Ranges::from_ends(parallel::ends(triangles, workers))
 }
 
 /// `items` (`per` entries per triangle) cut at the range ends `ends`.
