@@ -99,23 +99,26 @@ impl Appender {
         }
     }
 
-    /// Appends a bufferView of `data` (4-byte aligned, as vertex attributes need) and returns its
-    /// index; `stride` is written for vertex data whose elements are padded.
-    pub fn view(&mut self, data: &[u8], stride: Option<usize>, target: u32) -> usize {
+    /// Appends a bufferView of `length` zero bytes (4-byte aligned, as vertex attributes need)
+    /// and returns its index and the bytes to fill in place; `stride` is written for vertex data
+    /// whose elements are padded.
+    pub fn view_mut(&mut self, length: usize, stride: Option<usize>, target: u32) -> (usize, &mut [u8]) {
         let offset = self.bytes.len();
-        self.bytes.extend_from_slice(data);
-        self.bytes.resize(self.bytes.len().next_multiple_of(4), 0);
+        self.bytes.resize((offset + length).next_multiple_of(4), 0);
         let mut view = json!({
             "buffer": self.buffer,
             "byteOffset": self.base + offset,
-            "byteLength": data.len(),
+            "byteLength": length,
         });
         if let Some(stride) = stride {
             view["byteStride"] = json!(stride);
         }
         view["target"] = json!(target);
         self.views.push(view);
-        self.first_view + self.views.len() - 1
+        (
+            self.first_view + self.views.len() - 1,
+            &mut self.bytes[offset..offset + length],
+        )
     }
 
     /// Appends an accessor and returns its index.

@@ -68,18 +68,32 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     }
 
     let computed = compute_all(&asset, &sources, settings)?;
+    let mut grown = None;
     if !computed.is_empty() {
-        append(&mut asset, &sources, &users, &computed, &mut outcome)?;
+        grown = append(&mut asset, &sources, &users, &computed, &mut outcome)?;
     }
     let side_file = finish_buffers(&mut asset, &job.output)?;
     rebase_uris(&mut asset, &job.output)?;
-    let mut files = side_file.into_iter().collect::<Vec<_>>();
+    let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
+    if let Some(path) = side_file {
+        let added = asset.buffers.last().and_then(Option::as_deref).unwrap_or_default();
+        files.push((path, vec![added]));
+    }
+    let document;
     let main = match asset.kind {
         Kind::Glb => {
-            let bin = glb_bin(&asset);
-            io::encode_glb(&asset.json, bin)?
+            let bin = glb_bin(&asset, grown.as_ref());
+            let length = bin.as_ref().map(|pieces| pieces.iter().map(|p| p.len()).sum());
+            document = io::glb_head(&asset.json, length)?;
+            let mut pieces = vec![document.as_slice()];
+            pieces.extend(bin.into_iter().flatten());
+            pieces.extend(length.map(io::glb_padding));
+            pieces
         }
-        Kind::Gltf => io::encode_gltf(&asset.json)?,
+        Kind::Gltf => {
+            document = io::encode_gltf(&asset.json)?;
+            vec![document.as_slice()]
+        }
     };
     files.push((job.output.clone(), main));
     io::write_files(&files, &job.input)?;
@@ -127,14 +141,15 @@ fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result
         .collect()
 }
 
-/// Appends the new accessors and data and points the primitives at them.
+/// Appends the new accessors and data and points the primitives at them; returns what
+/// [`place`] returns.
 fn append(
     asset: &mut Asset,
     sources: &[Source],
     users: &[Vec<(usize, usize)>],
     computed: &[Computed],
     outcome: &mut Outcome,
-) -> Result<(), String> {
+) -> Result<Option<Grown>, String> {
     let (buffer, base) = data_buffer(asset);
     let mut appender = Appender::new(buffer, base, asset.root.buffer_views.len(), asset.root.accessors.len());
     let mut edits: Vec<Edit> = Vec::with_capacity(sources.len());
@@ -160,8 +175,7 @@ fn append(
     }
     let length = appender.end();
     let bytes = appender.append_json(&mut asset.json);
-    place(asset, buffer, base, length, bytes);
-    Ok(())
+    Ok(place(asset, buffer, base, length, bytes))
 }
 
 /// The buffer the new data goes into, and where in it: the end of the GLB's own buffer, or a new
@@ -176,14 +190,16 @@ fn data_buffer(asset: &Asset) -> (usize, usize) {
     }
 }
 
-/// Stores the new data in the buffer `data_buffer` chose.
-fn place(asset: &mut Asset, buffer: usize, base: usize, length: usize, bytes: Vec<u8>) {
+/// New data for the GLB's own buffer: it goes at byte `base`, after the old bytes (written after
+/// them, not copied onto them).
+type Grown = (usize, Vec<u8>);
+
+/// Stores the new data in the buffer `data_buffer` chose: a new buffer, or the GLB's own, whose
+/// new data is returned.
+fn place(asset: &mut Asset, buffer: usize, base: usize, length: usize, bytes: Vec<u8>) -> Option<Grown> {
     if buffer < asset.buffers.len() {
-        let data = asset.buffers[buffer].get_or_insert_with(Vec::new);
-        data.truncate(base);
-        data.resize(base, 0);
-        data.extend_from_slice(&bytes);
         asset.json["buffers"][buffer]["byteLength"] = json!(length);
+        Some((base, bytes))
     } else {
         let list = asset
             .json
@@ -196,13 +212,14 @@ fn place(asset: &mut Asset, buffer: usize, base: usize, length: usize, bytes: Ve
             list.push(json!({ "byteLength": length }));
         }
         asset.buffers.push(Some(bytes));
+        None
     }
 }
 
 /// Gives a buffer the tool added a place: the GLB's binary chunk when it is the first buffer of a
-/// .glb, a data URI in a .gltf whose buffers are all embedded, else a file beside the output.
-/// Returns that file.
-fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<(PathBuf, Vec<u8>)>, String> {
+/// .glb, a data URI in a .gltf whose buffers are all embedded, else a file beside the output,
+/// which is returned (its bytes are the last buffer's).
+fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<PathBuf>, String> {
     let added = asset.root.buffers.len();
     if asset.buffers.len() == added {
         return Ok(None);
@@ -210,7 +227,6 @@ fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<(PathBuf, V
     if asset.kind == Kind::Glb && added == 0 {
         return Ok(None);
     }
-    let bytes = asset.buffers[added].as_deref().unwrap_or_default();
     let embedded = asset.kind == Kind::Gltf
         && asset
             .root
@@ -218,13 +234,13 @@ fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<(PathBuf, V
             .iter()
             .all(|b| b.uri.as_deref().is_some_and(|u| u.starts_with("data:")));
     if embedded {
+        let bytes = asset.buffers[added].as_deref().unwrap_or_default();
         asset.json["buffers"][added]["uri"] = json!(uri::encode_data(bytes));
         return Ok(None);
     }
     let name = side_file_name(asset, output)?;
-    let path = output.with_file_name(&name);
     asset.json["buffers"][added]["uri"] = json!(uri::encode_segment(&name));
-    Ok(Some((path, bytes.to_vec())))
+    Ok(Some(output.with_file_name(&name)))
 }
 
 /// `<output stem>.tangents.bin`, or with a number, so that it names no file the document
@@ -298,12 +314,22 @@ fn canonical_dir(output: &Path) -> Result<PathBuf, String> {
     std::fs::canonicalize(dir).map_err(|e| format!("output folder {}: {e}", dir.display()))
 }
 
-/// The binary chunk of a .glb: its first buffer when that one has no URI.
-fn glb_bin(asset: &Asset) -> Option<&[u8]> {
+/// The binary chunk of a .glb, in pieces: its first buffer when that one has no URI, followed by
+/// the data [`place`] put after it.
+fn glb_bin<'a>(asset: &'a Asset, grown: Option<&'a Grown>) -> Option<Vec<&'a [u8]>> {
     let first = asset.json["buffers"].get(0)?;
     if first.get("uri").is_some() {
         return None;
     }
-    let length = first["byteLength"].as_u64()? as usize;
-    asset.buffers.first()?.as_deref().map(|b| &b[..length.min(b.len())])
+    let data = asset.buffers.first()?.as_deref()?;
+    Some(match grown {
+        None => {
+            let length = first["byteLength"].as_u64()? as usize;
+            vec![&data[..length.min(data.len())]]
+        }
+        Some((base, bytes)) => {
+            let old = asset.root.buffers[0].byte_length.0 as usize;
+            vec![&data[..old], &[0; 3][..base - old], bytes]
+        }
+    })
 }

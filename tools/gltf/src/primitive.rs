@@ -119,13 +119,8 @@ pub fn edit(
     appender: &mut Appender,
 ) -> Result<Edit, String> {
     let total = computed.tangents.len();
-    let tangent_bytes: Vec<u8> = computed
-        .tangents
-        .iter()
-        .flatten()
-        .flat_map(|f| f.to_le_bytes())
-        .collect();
-    let view = appender.view(&tangent_bytes, None, ARRAY_BUFFER);
+    let (view, bytes) = appender.view_mut(total * 16, None, ARRAY_BUFFER);
+    write_le(bytes, computed.tangents.iter().flatten(), |f| f.to_le_bytes());
     let tangent = appender.accessor(json!({
         "bufferView": view,
         "componentType": 5126,
@@ -219,7 +214,7 @@ fn copy_attribute(
     // Vertex attribute elements must start on 4-byte boundaries.
     let stride = size.next_multiple_of(4);
     let total = vertex_count + sources.len();
-    let mut data = vec![0u8; total * stride];
+    let (view, data) = appender.view_mut(total * stride, (stride != size).then_some(stride), ARRAY_BUFFER);
     if stride == size {
         data[..packed.len()].copy_from_slice(&packed);
     } else {
@@ -227,9 +222,7 @@ fn copy_attribute(
             slot[..size].copy_from_slice(element);
         }
     }
-    copy_split_vertices(&mut data, stride, size, vertex_count, sources)
-        .map_err(|e| format!("copying vertices: {e}"))?;
-    let view = appender.view(&data, (stride != size).then_some(stride), ARRAY_BUFFER);
+    copy_split_vertices(data, stride, size, vertex_count, sources).map_err(|e| format!("copying vertices: {e}"))?;
     let old = &json["accessors"][index];
     let mut accessor = json!({
         "bufferView": view,
@@ -259,18 +252,30 @@ fn write_indices(computed: &Computed, appender: &mut Appender) -> usize {
         .find(|&(kind, limit)| kind >= original && total <= limit)
         .map_or(5125, |(kind, _)| kind);
     let indices = &computed.split.indices;
-    let bytes: Vec<u8> = match component {
-        5121 => indices.iter().map(|&i| i as u8).collect(),
-        5123 => indices.iter().flat_map(|&i| (i as u16).to_le_bytes()).collect(),
-        _ => indices.iter().flat_map(|&i| i.to_le_bytes()).collect(),
+    let size = match component {
+        5121 => 1,
+        5123 => 2,
+        _ => 4,
     };
-    let view = appender.view(&bytes, None, ELEMENT_ARRAY_BUFFER);
+    let (view, bytes) = appender.view_mut(indices.len() * size, None, ELEMENT_ARRAY_BUFFER);
+    match size {
+        1 => write_le(bytes, indices, |&i| [i as u8]),
+        2 => write_le(bytes, indices, |&i| (i as u16).to_le_bytes()),
+        _ => write_le(bytes, indices, |&i| i.to_le_bytes()),
+    }
     appender.accessor(json!({
         "bufferView": view,
         "componentType": component,
         "count": indices.len(),
         "type": "SCALAR",
     }))
+}
+
+/// Writes each value's `N` little-endian bytes one after the other.
+fn write_le<T, const N: usize>(bytes: &mut [u8], values: impl IntoIterator<Item = T>, to_le: impl Fn(T) -> [u8; N]) {
+    for (slot, value) in bytes.chunks_exact_mut(N).zip(values) {
+        slot.copy_from_slice(&to_le(value));
+    }
 }
 
 /// A unit tangent perpendicular to `normal` (Duff et al. 2017), `w = 1`; `+x` when the normal
