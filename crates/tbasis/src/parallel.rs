@@ -103,6 +103,19 @@ fn run_spawning<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync, ma
     })
 }
 
+/// Runs `a` on the calling thread and `b` beside it (after `a`, on the calling thread, when no
+/// thread can be started) and returns both results. A panic in either resumes on the caller.
+pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    let (mut a_result, mut b_result) = (None, None);
+    let jobs: Vec<Box<dyn FnOnce() + Send + '_>> =
+        vec![Box::new(|| a_result = Some(a())), Box::new(|| b_result = Some(b()))];
+    run(jobs, |job| job());
+    (
+        a_result.expect("run ran the first job"),
+        b_result.expect("run ran the second job"),
+    )
+}
+
 /// The workers' reports merged, or the first worker's error.
 pub fn merge(results: Vec<Result<Report, Error>>) -> Result<Report, Error> {
     let mut total = Report::default();
@@ -166,6 +179,14 @@ mod tests {
     fn run_keeps_part_order() {
         assert_eq!(run(vec![1, 2, 3, 4], |x| x * 10), vec![10, 20, 30, 40]);
         assert_eq!(run(Vec::<u8>::new(), |x| x), Vec::<u8>::new());
+    }
+
+    #[test]
+    fn join_returns_both_results() {
+        let caller = std::thread::current().id();
+        let (a, b) = join(|| (1, std::thread::current().id()), || (2, std::thread::current().id()));
+        assert_eq!((a.0, b.0), (1, 2));
+        assert_eq!(a.1, caller);
     }
 
     #[test]

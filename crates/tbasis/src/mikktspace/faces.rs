@@ -9,16 +9,24 @@ pub(crate) const ORIENT_PRESERVING: u8 = 1;
 /// The triangle has no usable derivative: it joins any group that reaches it and adds nothing.
 pub(crate) const GROUP_WITH_ANY: u8 = 2;
 
-/// Fills `order` with the triangles whose three welded positions differ, in triangle order, then
-/// the others (two equal positions: degenerate). Returns how many are good.
-pub(crate) fn good_first(attributes: &[Packed], welded: &[u32], order: &mut [u32]) -> usize {
+/// Marks with 1 each triangle of `marks` (triangles `first..`) with two equal welded positions:
+/// degenerate.
+pub(crate) fn mark_degenerate(attributes: &[Packed], welded: &[u32], first: usize, marks: &mut [u8]) {
     let position = |corner: usize| position(&attributes[welded[corner] as usize]);
+    for (t, mark) in (first..).zip(marks.iter_mut()) {
+        let [p0, p1, p2] = [0, 1, 2].map(|k| position(3 * t + k));
+        *mark = u8::from(equal(p0, p1) || equal(p0, p2) || equal(p1, p2));
+    }
+}
+
+/// Fills `order` with the triangles `marks` leaves unmarked, in triangle order, then the marked
+/// (degenerate) ones. Returns how many are good.
+pub(crate) fn good_first(marks: &[u8], order: &mut [u32]) -> usize {
     let mut good = 0;
     let mut degenerate = order.len();
-    for t in 0..order.len() {
-        let [p0, p1, p2] = [0, 1, 2].map(|k| position(3 * t + k));
+    for (t, &mark) in marks.iter().enumerate() {
         // Degenerate triangles keep no particular order: each only copies from good ones.
-        if equal(p0, p1) || equal(p0, p2) || equal(p1, p2) {
+        if mark != 0 {
             degenerate -= 1;
             order[degenerate] = t as u32;
         } else {

@@ -20,6 +20,9 @@ mod tspace;
 mod vector;
 mod weld;
 
+use core::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, PoisonError};
+
 use glam::Vec3 as GlamVec3;
 
 use self::arena::{bytes_of, Arena};
@@ -33,6 +36,7 @@ use self::weld::WeldScratch;
 use crate::error::Error;
 use crate::mesh::{Mesh, Output};
 use crate::options::{DegeneratePolicy, Options};
+use crate::parallel;
 use crate::report::Report;
 use crate::robust::resolve;
 use crate::views::strided::StridedMut;
@@ -155,8 +159,41 @@ pub(crate) fn generate_corners(
     report: &mut Report,
 ) -> Result<(), Error> {
     let buffers = compute(mesh, options, bytes, report)?;
-    for c in 0..mesh.corner_count() {
-        output.set(c, frame(&buffers, c));
+    let Buffers {
+        tangents,
+        orientation,
+        slots,
+        table,
+        ..
+    } = buffers;
+    let (tangents, orientation) = (&*tangents, &*orientation);
+    let write = |first: usize, mut part: StridedMut<[f32; 4]>| {
+        for i in 0..part.len() {
+            part.set(i, frame(tangents, orientation, first + i));
+        }
+    };
+    let mut count = || count_vertices(mesh, tangents, orientation, slots, table, report);
+    let writers = threads::ranges(options.threads, mesh.corner_count() / 3).ends().len() as u64;
+    if writers == 1 {
+        count();
+        write(0, output.reborrow());
+    } else {
+        // The counts go beside the writes: the thread that counts writes a range half as long as
+        // each other thread's (range k ends at (2k - 1) / (2n - 1) of the corners).
+        let corners = mesh.corner_count() as u64;
+        let ends =
+            threads::Ranges::from_ends((1..=writers).map(|k| (corners * (2 * k - 1) / (2 * writers - 1)) as usize));
+        let starts = core::iter::once(0).chain(ends.ends().iter().copied());
+        let count = Mutex::new(Some(count));
+        let jobs: Vec<_> = starts.zip(output.split(ends.ends())).collect();
+        parallel::run(jobs, |(first, part)| {
+            if first == 0 {
+                if let Some(mut count) = count.lock().unwrap_or_else(PoisonError::into_inner).take() {
+                    count();
+                }
+            }
+            write(first, part)
+        });
     }
     Ok(())
 }
@@ -171,16 +208,23 @@ pub(crate) fn generate_vertices(
     report: &mut Report,
 ) -> Result<(), Error> {
     let buffers = compute(mesh, options, bytes, report)?;
+    let Buffers {
+        tangents,
+        orientation,
+        slots,
+        table,
+        ..
+    } = buffers;
+    count_vertices(mesh, tangents, orientation, slots, table, report);
     let mut out = output.whole();
-    for v in 0..mesh.vertex_count() {
+    for (v, &first) in slots[..mesh.vertex_count()].iter().enumerate() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
-        let first = buffers.slots[v];
         let unit = crate::robust::frame::VertexNormal::new(normal.to_array()).unit;
         let (tangent, w) = if first == NONE {
             report.fallback_vertices += 1;
             resolve::fallback(unit)
         } else {
-            let [x, y, z, w] = frame(&buffers, first as usize);
+            let [x, y, z, w] = frame(tangents, orientation, first as usize);
             (GlamVec3::new(x, y, z), w)
         };
         // LEGACY keeps the caller's normal as given; the other policies promise a unit bitangent,
@@ -195,13 +239,13 @@ pub(crate) fn generate_vertices(
 }
 
 /// Corner `c`'s tangent and sign as `setTSpaceBasic` receives them.
-fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
-    let [x, y, z] = buffers.tangents[c];
-    [x, y, z, if buffers.orientation[c] != 0 { 1.0 } else { -1.0 }]
+fn frame(tangents: &[Vec3], orientation: &[u8], c: usize) -> [f32; 4] {
+    let [x, y, z] = tangents[c];
+    [x, y, z, if orientation[c] != 0 { 1.0 } else { -1.0 }]
 }
 
-/// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
-/// (in `slots`) every vertex's first corner. Fails before anything reaches the caller's output.
+/// Every corner's tangent and orientation (in the buffers laid out in `bytes`) and the report but
+/// for [`count_vertices`]. Fails before anything reaches the caller's output.
 fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut Report) -> Result<Buffers<'a>, Error> {
     if mesh.vertex_count() == 0 {
         // No scratch was asked for: any index is out of range, or there is nothing to do.
@@ -222,21 +266,34 @@ fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut
     };
     *report = Report::default();
 
-    // 1. Every corner's vertex, checked against the vertex count.
-    for c in 0..corner_count {
-        let v = mesh.indices.corner(c);
-        if v >= vertex_count {
-            return Err(mesh.index_error());
+    // 1. Every corner's vertex, checked against the vertex count, and the default frame
+    //    (1, 0, 0) with w = -1, kept by corners no group reaches; ranges of corners on separate
+    //    threads.
+    let ranges = threads::item_ranges(options.threads, corner_count, 3);
+    let ends = ranges.ends();
+    let parts = threads::split(&mut *buffers.welded, ends, 1)
+        .zip(threads::split(&mut *buffers.tangents, ends, 1))
+        .zip(threads::split(&mut *buffers.orientation, ends, 1));
+    let in_range = AtomicBool::new(true);
+    threads::run(ends, parts, |first, ((welded, tangents), orientation)| {
+        for (c, slot) in (first..).zip(welded.iter_mut()) {
+            let v = mesh.indices.corner(c);
+            if v >= vertex_count {
+                in_range.store(false, Ordering::Relaxed);
+                return;
+            }
+            *slot = v as u32;
         }
-        buffers.welded[c] = v as u32;
+        tangents.fill([1.0, 0.0, 0.0]);
+        orientation.fill(0);
+    });
+    if !in_range.into_inner() {
+        return Err(mesh.index_error());
     }
     // 2. REJECT refuses what the other methods would call degenerate, before anything else.
     if options.degenerate_policy == DegeneratePolicy::Reject {
         repair::reject_degenerate(mesh, options)?;
     }
-    // 3. The default frame (1, 0, 0) with w = -1, kept by corners no group reaches.
-    buffers.tangents.fill([1.0, 0.0, 0.0]);
-    buffers.orientation.fill(0);
     if corner_count > 0 {
         solve(&attributes, options.threads, &mut buffers, report)?;
     }
@@ -245,7 +302,6 @@ fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut
         repair::repair(mesh, options.degenerate_policy, buffers.tangents, buffers.slots, report);
         report.abnormal_normals = resolve::count_abnormal_normals(mesh);
     }
-    count_vertices(mesh, &mut buffers, report);
     Ok(buffers)
 }
 
@@ -260,45 +316,74 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let mut phase = Arena::Carve(&mut *b.phase);
     let weld_scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
     let welded_count = weld::weld(attributes, threads, b.welded, b.source, b.values, weld_scratch);
-    for (packed, &vertex) in b.attributes.iter_mut().zip(&b.source[..welded_count]) {
-        *packed = attributes.key(vertex);
-    }
+    let ranges = threads::item_ranges(threads, welded_count, 1);
+    let ends = ranges.ends();
+    let parts = threads::split(&mut b.attributes[..welded_count], ends, 1);
+    threads::run(ends, parts, |first, part| {
+        for (packed, &vertex) in part.iter_mut().zip(&b.source[first..]) {
+            *packed = attributes.key(vertex);
+        }
+    });
     let packed = &b.attributes[..welded_count];
 
     // 6. Degenerate triangles (two equal positions) last, the good ones in order (DegenPrologue).
-    let good = faces::good_first(packed, b.welded, b.order);
-    for g in 0..triangles {
-        let t = b.order[g] as usize;
-        b.ids[g] = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
-    }
+    //    The marks go in `flags`, which step 7 overwrites.
+    let ranges = threads::ranges(threads, triangles);
+    let ends = ranges.ends();
+    threads::run(
+        ends,
+        threads::split(&mut b.flags[..triangles], ends, 1),
+        |first, marks| {
+            faces::mark_degenerate(packed, b.welded, first, marks);
+        },
+    );
+    let good = faces::good_first(&b.flags[..triangles], b.order);
+    threads::run(ends, threads::split(b.ids, ends, 1), |first, ids| {
+        for (id, &t) in ids.iter_mut().zip(&b.order[first..]) {
+            let t = t as usize;
+            *id = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
+        }
+    });
     let order = &b.order[..good];
     let ids = &b.ids[..good];
 
-    // 7. Each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19).
+    // 7. Each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19), and
+    // 8. the good triangle across each edge (BuildNeighborsFast). Neither reads what the other
+    //    writes: with two threads or more the pairing, which runs on one, goes beside the
+    //    derivatives, which take the others.
     let ranges = threads::ranges(threads, good);
-    let ends = ranges.ends();
-    let parts = threads::split(&mut b.tangent_s[..good], ends, 1)
-        .zip(threads::split(&mut b.tangent_t[..good], ends, 1))
-        .zip(threads::split(&mut b.flags[..good], ends, 1));
+    let (tangent_s, tangent_t, flags) = (&mut b.tangent_s[..good], &mut b.tangent_t[..good], &mut b.flags[..good]);
     let welded = &*b.welded;
-    threads::run(ends, parts, |first, ((s, t), flags)| {
-        let end = first + flags.len();
-        faces::derivatives(packed, welded, &order[first..end], s, t, flags)
-    });
+    let mut derivatives = move |threads: u32| {
+        let ranges = threads::ranges(threads, good);
+        let ends = ranges.ends();
+        let parts = threads::split(tangent_s, ends, 1)
+            .zip(threads::split(tangent_t, ends, 1))
+            .zip(threads::split(flags, ends, 1));
+        threads::run(ends, parts, |first, ((s, t), flags)| {
+            let end = first + flags.len();
+            faces::derivatives(packed, welded, &order[first..end], s, t, flags)
+        });
+    };
+    let (phase, values, neighbors) = (&mut *b.phase, &b.values[..welded_count], &mut b.neighbors[..good]);
+    let mut pairing = move || -> Result<(), Error> {
+        let mut phase = Arena::Carve(phase);
+        let mut edges = edge_scratch(&mut phase, corner_count)?;
+        edges.starts = &mut edges.starts[..welded_count + 1];
+        neighbors::pair_edges(ids, values, neighbors, edges);
+        Ok(())
+    };
+    if ranges.ends().len() > 1 {
+        parallel::join(|| derivatives(threads - 1), pairing).1?;
+    } else {
+        derivatives(threads);
+        pairing()?;
+    }
     for t in 0..triangles {
         let unusable = t >= good || b.flags[t] & GROUP_WITH_ANY != 0;
         if unusable {
             report.note_degenerate(b.order[t] as usize);
         }
-    }
-
-    // 8. The good triangle across each edge (BuildNeighborsFast).
-    {
-        let mut phase = Arena::Carve(&mut *b.phase);
-        let mut edges = edge_scratch(&mut phase, corner_count)?;
-        let used = welded_count + 1;
-        edges.starts = &mut edges.starts[..used];
-        neighbors::pair_edges(ids, &b.values[..welded_count], &mut b.neighbors[..good], edges);
     }
 
     // 9. Orientation-preserving groups around each welded vertex (Build4RuleGroups).
@@ -316,12 +401,29 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace),
     //     on ranges of good triangles: a worker evaluates the groups with a corner in its range
     //     and writes those corners (a group straddling two ranges is evaluated twice, alike).
-    let mut largest = 0;
-    for group in 0..group_count {
-        let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
-        largest = largest.max(range.len());
-        groups.faces[range].sort_unstable();
-    }
+    let starts = &groups.starts[..group_count + 1];
+    let largest = starts.windows(2).map(|w| (w[1] - w[0]) as usize).max().unwrap_or(0);
+    // Ranges of whole groups on separate threads, cut where the ranges of their members would be.
+    let member_ranges = threads::item_ranges(threads, starts[group_count] as usize, 3);
+    let member_ends = threads::Ranges::from_ends(
+        member_ranges
+            .ends()
+            .iter()
+            .map(|&end| starts[starts.partition_point(|&s| (s as usize) < end)] as usize),
+    );
+    let ends = member_ends.ends();
+    threads::run(ends, threads::split(&mut *groups.faces, ends, 1), |first, faces| {
+        let local = starts
+            .iter()
+            .map(|&s| s as usize)
+            .skip_while(|&s| s < first)
+            .map(|s| s - first);
+        let (mut begin, len) = (0, faces.len());
+        for end in local.take_while(|&end| end <= len).skip(1) {
+            faces[begin..end].sort_unstable();
+            begin = end;
+        }
+    });
     let inputs = Inputs {
         attributes: packed,
         ids,
@@ -380,6 +482,9 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
     // 11. Degenerate triangles copy the first good corner of the same welded vertex
     //     (DegenEpilogue).
+    if good == triangles {
+        return Ok(());
+    }
     let first_good = &mut b.table[..welded_count];
     first_good.fill(NONE);
     for &t in order {
@@ -406,12 +511,19 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
 /// mirrored (corners of both signs) and split (corners that differ in any bit).
-fn count_vertices(mesh: &Mesh, buffers: &mut Buffers, report: &mut Report) {
+fn count_vertices(
+    mesh: &Mesh,
+    tangents: &[Vec3],
+    orientation: &[u8],
+    slots: &mut [u32],
+    table: &mut [u32],
+    report: &mut Report,
+) {
     const MIRRORED: u32 = 1;
     const SPLIT: u32 = 2;
     let vertex_count = mesh.vertex_count();
-    let first = &mut buffers.slots[..vertex_count];
-    let marks = &mut buffers.table[..vertex_count];
+    let first = &mut slots[..vertex_count];
+    let marks = &mut table[..vertex_count];
     first.fill(NONE);
     marks.fill(0);
     for c in 0..mesh.corner_count() {
@@ -421,11 +533,10 @@ fn count_vertices(mesh: &Mesh, buffers: &mut Buffers, report: &mut Report) {
             continue;
         }
         let f = first[v] as usize;
-        if buffers.orientation[f] != buffers.orientation[c] {
+        if orientation[f] != orientation[c] {
             marks[v] |= MIRRORED;
         }
-        let same = buffers.orientation[f] == buffers.orientation[c]
-            && buffers.tangents[f].map(f32::to_bits) == buffers.tangents[c].map(f32::to_bits);
+        let same = orientation[f] == orientation[c] && tangents[f].map(f32::to_bits) == tangents[c].map(f32::to_bits);
         if !same {
             marks[v] |= SPLIT;
         }

@@ -11,7 +11,7 @@ use crate::parallel;
 const MIN_TRIANGLES_PER_WORKER: usize = if cfg!(test) { 8 } else { 16 * 1024 };
 
 /// At most this many ranges: beyond it another thread would not pay on any core count in use.
-const MAX_RANGES: usize = 64;
+pub(crate) const MAX_RANGES: usize = 64;
 
 /// The exclusive ends of consecutive ranges, held without allocating.
 pub(crate) struct Ranges {
@@ -46,6 +46,20 @@ pub(crate) fn ranges(threads: u32, triangles: usize) -> Ranges {
         .min(triangles / MIN_TRIANGLES_PER_WORKER)
         .clamp(1, MAX_RANGES);
     Ranges::from_ends(parallel::ends(triangles, workers))
+}
+
+/// Ranges of `count` items, `per` to a triangle, cut where [`ranges`] cuts `count / per` triangles
+/// (the last ending at `count`).
+pub(crate) fn item_ranges(threads: u32, count: usize, per: usize) -> Ranges {
+    let triangles = ranges(threads, count / per);
+    let last = triangles.ends().len() - 1;
+    Ranges::from_ends(
+        triangles
+            .ends()
+            .iter()
+            .enumerate()
+            .map(|(i, &end)| if i == last { count } else { per * end }),
+    )
 }
 
 /// `items` (`per` entries per triangle) cut at the range ends `ends`.

@@ -88,48 +88,35 @@ pub(crate) fn weld(
     let corner_count = corners.len();
     let position = |v: u32| attributes.position(v);
 
-    // 1. The bounding box, with the C's `if ... else if` updates (a NaN never moves it).
-    let mut min = position(corners[0]);
-    let mut max = min;
-    for &v in &corners[1..] {
-        let p = position(v);
-        for axis in 0..3 {
-            if min[axis] > p[axis] {
-                min[axis] = p[axis];
-            } else if max[axis] < p[axis] {
-                max[axis] = p[axis];
-            }
-        }
-    }
+    // 1. The bounding box.
+    let (min, max) = bounding_box(threads, corners, &position);
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
 
-    // 2. Corners by grid cell, in corner order within a cell.
-    for (v, (cell, hash)) in cells.iter_mut().zip(hashes.iter_mut()).enumerate() {
-        let key = attributes.key(v as u32);
-        let unequal = if key.iter().any(|x| x.is_nan()) { UNEQUAL } else { 0 };
-        *cell = grid_cell(min[axis], max[axis], key[axis]) as u32 | unequal;
-        *hash = hash_of(&key.map(canonical_bits));
-    }
-    let hashes = &*hashes;
+    // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads); how many
+    //    corners each cell holds.
+    let vertex_ranges = threads::item_ranges(threads, cells.len(), 1);
+    let ends = vertex_ranges.ends();
+    let parts = threads::split(&mut *cells, ends, 1).zip(threads::split(&mut *hashes, ends, 1));
+    threads::run(ends, parts, |first, (cells, hashes)| {
+        for (v, (cell, hash)) in (first..).zip(cells.iter_mut().zip(hashes.iter_mut())) {
+            let key = attributes.key(v as u32);
+            let unequal = if key.iter().any(|x| x.is_nan()) { UNEQUAL } else { 0 };
+            *cell = grid_cell(min[axis], max[axis], key[axis]) as u32 | unequal;
+            *hash = hash_of(&key.map(canonical_bits));
+        }
+    });
+    let (cells, hashes, corners_in) = (&*cells, &*hashes, &*corners);
     starts.fill(0);
-    for &v in corners.iter() {
+    for &v in corners_in {
         starts[(cells[v as usize] & !UNEQUAL) as usize + 1] += 1;
     }
     for k in 0..GRID_CELLS {
         starts[k + 1] += starts[k];
     }
     cursors.copy_from_slice(&starts[..GRID_CELLS]);
-    for (c, &v) in corners.iter().enumerate() {
-        let cell = cells[v as usize];
-        let cursor = &mut cursors[(cell & !UNEQUAL) as usize];
-        let at = *cursor as usize;
-        *cursor += 1;
-        positions[at] = position(v);
-        let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
-        entries[at] = [c as u32, vertex, c as u32];
-    }
 
-    // 3. Every cell split and welded (`MergeVertsFast`), ranges of cells on separate threads.
+    // 3. Ranges of cells on separate threads: each worker gathers its cells' corners (in corner
+    //    order within a cell), then splits and welds every cell (`MergeVertsFast`).
     let cell_ranges = cell_ranges(threads, starts);
     let ends = cell_ranges.ends();
     let bounds = Ranges::from_ends(ends.iter().map(|&cell| starts[cell] as usize));
@@ -138,12 +125,27 @@ pub(crate) fn weld(
     let parts = threads::split(positions, bounds, 1)
         .zip(threads::split(entries, bounds, 1))
         .zip(threads::split(stack, bounds, 1))
+        .zip(threads::split(cursors, ends, 1))
         .zip(first_cells.zip(ends.iter().copied()));
     threads::run(
         bounds,
         parts,
-        |first, (((positions, entries), stack), (first_cell, end_cell))| {
-            for k in first_cell..end_cell {
+        |first, ((((positions, entries), stack), cursors), (first_cell, end_cell))| {
+            let owned = first_cell..end_cell;
+            for (c, &v) in corners_in.iter().enumerate() {
+                let cell = cells[v as usize];
+                let k = (cell & !UNEQUAL) as usize;
+                if !owned.contains(&k) {
+                    continue;
+                }
+                let cursor = &mut cursors[k - first_cell];
+                let at = *cursor as usize - first;
+                *cursor += 1;
+                positions[at] = position(v);
+                let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
+                entries[at] = [c as u32, vertex, c as u32];
+            }
+            for k in owned {
                 let cell = starts[k] as usize - first..starts[k + 1] as usize - first;
                 if cell.len() > 1 {
                     let equal = Equality { attributes, hashes };
@@ -171,6 +173,51 @@ pub(crate) fn weld(
         corners[c] = number[first];
     }
     count as usize
+}
+
+/// The box mikktspace.c's `if ... else if` updates find, from the first corner's position: a
+/// corner lowers the minimum or raises the maximum where it compares past them, so a `NaN` moves
+/// nothing and a `NaN` in the first corner stays; of equal values (a -0 and a +0) the first stays.
+/// Ranges of corners on separate threads, each from its first value that is not `NaN`, joined in
+/// order with the same strict comparisons: the same box.
+fn bounding_box(threads: u32, corners: &[u32], position: &(impl Fn(u32) -> Vec3 + Sync)) -> (Vec3, Vec3) {
+    let ranges = threads::item_ranges(threads, corners.len(), 3);
+    let ends = ranges.ends();
+    let mut boxes = [[[f32::NAN; 3]; 2]; threads::MAX_RANGES];
+    let starts = core::iter::once(0).chain(ends.iter().copied());
+    let parts = starts.zip(ends).zip(boxes.iter_mut());
+    threads::run(ends, parts, |_, ((start, &end), [min, max])| {
+        for &v in &corners[start..end] {
+            let p = position(v);
+            for axis in 0..3 {
+                if min[axis].is_nan() {
+                    (min[axis], max[axis]) = (p[axis], p[axis]);
+                } else if min[axis] > p[axis] {
+                    min[axis] = p[axis];
+                } else if max[axis] < p[axis] {
+                    max[axis] = p[axis];
+                }
+            }
+        }
+    });
+    let [mut min, mut max] = boxes[0];
+    for [range_min, range_max] in &boxes[1..ends.len()] {
+        for axis in 0..3 {
+            if min[axis] > range_min[axis] {
+                min[axis] = range_min[axis];
+            }
+            if max[axis] < range_max[axis] {
+                max[axis] = range_max[axis];
+            }
+        }
+    }
+    let first = position(corners[0]);
+    for axis in 0..3 {
+        if first[axis].is_nan() {
+            (min[axis], max[axis]) = (first[axis], first[axis]);
+        }
+    }
+    (min, max)
 }
 
 /// The ranges of grid cells the workers take, about equal in corners.
@@ -402,6 +449,51 @@ mod tests {
         ] {
             let cell = grid_cell(min, max, v);
             assert!(cell < GRID_CELLS, "{min} {max} {v} -> {cell}");
+        }
+    }
+
+    #[test]
+    fn the_bounding_box_is_the_one_pass_box_on_any_thread_count() {
+        // The C's loop, on one thread.
+        let one_pass = |points: &[Vec3]| {
+            let (mut min, mut max) = (points[0], points[0]);
+            for p in &points[1..] {
+                for axis in 0..3 {
+                    if min[axis] > p[axis] {
+                        min[axis] = p[axis];
+                    } else if max[axis] < p[axis] {
+                        max[axis] = p[axis];
+                    }
+                }
+            }
+            (min, max)
+        };
+        let mut rng = crate::test_rng::TestRng(0x5EED);
+        for case in 0..40 {
+            // Few distinct values, so that ties (a -0 against a +0) and NaN meet every range.
+            let all = [0.0f32, -0.0, 1.0, f32::NAN, -1.0, 2.5, -3.0, 0.5];
+            // Half the cases with the extremes signed zeros (minimum) and 1 (maximum) only.
+            let values = if case % 2 == 0 { &all[..4] } else { &all[..] };
+            let points: Vec<Vec3> = (0..300)
+                .map(|i| {
+                    let pick = |rng: &mut crate::test_rng::TestRng| values[rng.below(values.len())];
+                    let p = [pick(&mut rng), pick(&mut rng), pick(&mut rng)];
+                    // Some cases start with a NaN, some have no NaN before the last range.
+                    match (case % 4, i) {
+                        (0, 0) => [f32::NAN, p[1], -0.0],
+                        (1, _) if i < 200 => p.map(|x| if x.is_nan() { 0.0 } else { x }),
+                        _ => p,
+                    }
+                })
+                .collect();
+            let corners: Vec<u32> = (0..points.len() as u32).rev().collect();
+            let ordered: Vec<Vec3> = corners.iter().map(|&v| points[v as usize]).collect();
+            let expected = one_pass(&ordered);
+            let bits = |(min, max): (Vec3, Vec3)| (min.map(f32::to_bits), max.map(f32::to_bits));
+            for threads in [1, 2, 8] {
+                let found = bounding_box(threads, &corners, &|v: u32| points[v as usize]);
+                assert_eq!(bits(found), bits(expected), "case {case}, threads={threads}");
+            }
         }
     }
 
