@@ -133,19 +133,30 @@ pub(crate) fn resolve_measured(
 ) -> Result<usize, Error> {
     let vertex_count = mesh.vertex_count();
     // 3. Per triangle: check its indices, solve Q = sT + tB for T (and B), add to its corners;
-    //    with several workers, each adds to its own range of vertices, in triangle order.
-    let workers = parallel::worker_count(options.threads, mesh);
-    let accumulate_range = |part: &mut Scratch| match (options.degenerate_policy, mesh.texcoords) {
-        (DegeneratePolicy::Legacy, Some(uvs)) => legacy::accumulate(mesh, uvs, options.flip_v, part),
+    //    with several workers, each adds to its own range of vertices, in triangle order. Where
+    //    the triangle order follows the vertex order, each worker reads the triangles touching
+    //    its range; elsewhere the policies but LEGACY measure ranges of triangles apart, then add
+    //    (LEGACY stays on one thread there).
+    let legacy = options.degenerate_policy == DegeneratePolicy::Legacy && mesh.texcoords.is_some();
+    let local_workers = parallel::worker_count(options.threads, mesh);
+    let workers = match legacy {
+        true => local_workers,
+        false => parallel::workers_for(options.threads, vertex_count),
+    };
+    let accumulate_range = |part: &mut Scratch| match (legacy, mesh.texcoords) {
+        (true, Some(uvs)) => legacy::accumulate(mesh, uvs, options.flip_v, part),
         _ => simd::run(|| accumulate::accumulate(mesh, options, part)),
     };
     let mut found = if workers == 1 {
         accumulate_range(scratch)?
-    } else {
+    } else if local_workers == workers || vertex_count > u32::MAX as usize {
         let ends = parallel::range_ends(vertex_count, workers);
         parallel::merge(parallel::run(scratch.split(&ends), |mut part| {
             accumulate_range(&mut part)
         }))?
+    } else {
+        let ends = parallel::range_ends(vertex_count, workers);
+        accumulate::accumulate_in_chunks(mesh, options, scratch.split(&ends), &ends)?
     };
     count_flags(scratch.flags, &mut found);
 

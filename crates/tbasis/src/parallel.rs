@@ -1,7 +1,9 @@
 //! Spreading a call over threads: each worker owns a consecutive range of vertices.
 //!
-//! A worker reads every triangle but adds only to the vertices it owns, so each vertex still sums
-//! its triangles in triangle order and the result is bit-identical whatever the thread count.
+//! A worker adds only to the vertices it owns, so each vertex still sums its triangles in triangle
+//! order and the result is bit-identical whatever the thread count. Where the triangle order
+//! follows the vertex order, a worker reads the triangles with a corner in its range; elsewhere
+//! the workers measure ranges of triangles first (`robust::accumulate::accumulate_in_chunks`).
 #![forbid(unsafe_code)]
 
 use std::sync::{Mutex, PoisonError};
@@ -18,12 +20,18 @@ const MIN_VERTICES_PER_WORKER: usize = if cfg!(test) { 16 } else { 32 * 1024 };
 /// Every how many triangles [`split_pays_off`] looks at one.
 const LOCALITY_SAMPLE_STEP: usize = 16;
 
-/// How many workers a call uses: at most `threads`, at least 1.
+/// How many workers a call on `vertex_count` vertices uses: at most `threads`, at least 1.
+pub fn workers_for(threads: u32, vertex_count: usize) -> usize {
+    (threads.max(1) as usize)
+        .min(vertex_count / MIN_VERTICES_PER_WORKER)
+        .max(1)
+}
+
+/// [`workers_for`], for work where each worker reads every triangle with a corner in its vertex
+/// range: 1 unless the triangle order follows the vertex order.
 pub fn worker_count(threads: u32, mesh: &Mesh) -> usize {
     let vertex_count = mesh.vertex_count();
-    let workers = (threads.max(1) as usize)
-        .min(vertex_count / MIN_VERTICES_PER_WORKER)
-        .max(1);
+    let workers = workers_for(threads, vertex_count);
     if workers > 1 && !split_pays_off(mesh, &range_ends(vertex_count, workers)) {
         return 1;
     }

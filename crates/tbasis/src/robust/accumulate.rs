@@ -2,6 +2,8 @@
 //! by handedness.
 #![forbid(unsafe_code)]
 
+use core::ops::Range;
+
 use glam::{Vec2, Vec3};
 
 use crate::error::Error;
@@ -11,7 +13,9 @@ use crate::report::Report;
 use crate::robust::batch::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
 use crate::robust::degenerate::Shape;
 use crate::robust::frame::{length_and_direction, length_and_direction_fast};
-use crate::scratch::{flag, Scratch};
+use crate::scratch::{flag, Scratch, VertexSums};
+use crate::views::strided::Strided;
+use crate::{parallel, simd};
 
 /// Per-triangle results for one batch (a lane per triangle).
 ///
@@ -196,27 +200,59 @@ impl Corners {
     #[inline(always)]
     fn weigh(&mut self, method: Method, faces: &Faces, batch: &TriangleBatch) {
         let lanes = lanes_in_use(batch.len);
-        // One loop per case, with nothing to decide inside: each compiles to SIMD.
+        // One loop per case, with nothing to decide inside: each compiles to SIMD (its closure
+        // forced inline: a call per lane would keep the loop scalar).
         for k in 0..3 {
             let normals = &batch.normal[k];
             match method {
-                Method::Lengyel => self.set(k, lanes, |i| (lane3(&faces.direction, i), faces.length[i]), faces),
+                Method::Lengyel => self.set(
+                    k,
+                    lanes,
+                    #[inline(always)]
+                    |i| (lane3(&faces.direction, i), faces.length[i]),
+                    faces,
+                ),
                 // MIKKTSPACE has its own module and never comes here.
                 Method::Angle | Method::Mikktspace => match k {
-                    0 => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (a, b)), faces),
-                    1 => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (b - a, -a)), faces),
-                    _ => self.set(k, lanes, |i| angle_corner(faces, normals, i, |a, b| (-b, a - b)), faces),
+                    0 => self.set(
+                        k,
+                        lanes,
+                        #[inline(always)]
+                        |i| angle_corner(faces, normals, i, |a, b| (a, b)),
+                        faces,
+                    ),
+                    1 => self.set(
+                        k,
+                        lanes,
+                        #[inline(always)]
+                        |i| angle_corner(faces, normals, i, |a, b| (b - a, -a)),
+                        faces,
+                    ),
+                    _ => self.set(
+                        k,
+                        lanes,
+                        #[inline(always)]
+                        |i| angle_corner(faces, normals, i, |a, b| (-b, a - b)),
+                        faces,
+                    ),
                 },
                 Method::Area => self.set(
                     k,
                     lanes,
+                    #[inline(always)]
                     |i| {
                         let scale = faces.position_scale[i];
                         (lane3(&faces.direction, i), 0.5 * faces.twice_area[i] * scale * scale)
                     },
                     faces,
                 ),
-                Method::Uniform => self.set(k, lanes, |i| (lane3(&faces.direction, i), 1.0), faces),
+                Method::Uniform => self.set(
+                    k,
+                    lanes,
+                    #[inline(always)]
+                    |i| (lane3(&faces.direction, i), 1.0),
+                    faces,
+                ),
             }
         }
     }
@@ -324,28 +360,60 @@ fn atan2_upper(y: f32, x: f32) -> f32 {
     }
 }
 
-/// Adds each triangle's tangent to its corners, split by the corner's handedness (the UV
-/// orientation relative to the vertex normal), so that a vertex on a mirror fold can keep one
-/// side's frame instead of a cancelled sum. Degenerate triangles only mark their vertices used.
+/// What corner `k` of a triangle adds to its vertex (24 bytes: the chunked sums keep many).
+#[derive(Clone, Copy, Default)]
+struct CornerTerm {
+    /// The vertex, where [`accumulate_in_chunks`] keeps it (below 2^32 vertices).
+    vertex: u32,
+    /// `tangent * weight`, and the weight.
+    tangent: [f32; 3],
+    weight: f32,
+    /// The flag bits it sets on its vertex.
+    flags: u8,
+    /// The sums it adds to: [`PRIMARY`] (right-handed), [`SECONDARY`], or [`NONE`] (a degenerate
+    /// triangle, which only marks its vertices used).
+    side: u8,
+}
+
+/// [`CornerTerm::side`] values.
+const NONE: u8 = 0;
+const PRIMARY: u8 = 1;
+const SECONDARY: u8 = 2;
+
+impl CornerTerm {
+    /// Adds the term to its vertex's sums and flags.
+    #[inline(always)]
+    fn add_to(&self, sums: &mut VertexSums, flags: &mut u8) {
+        *flags |= self.flags;
+        let side = match self.side {
+            PRIMARY => &mut sums.primary,
+            SECONDARY => &mut sums.secondary,
+            _ => return,
+        };
+        for (sum, tangent) in side.iter_mut().zip(self.tangent) {
+            *sum += tangent;
+        }
+        sums.weight += self.weight;
+    }
+}
+
+/// Measures the triangles of `triangles` whose vertices `keep` accepts and calls
+/// `visit(t, k, v, term)` for corner `k` (vertex `v`) of each triangle `t`, in triangle order: the tangent split
+/// by the corner's handedness (the UV orientation relative to the vertex normal), so that a vertex
+/// on a mirror fold can keep one side's frame instead of a cancelled sum.
 ///
-/// Per-triangle and per-corner arithmetic runs a batch of triangles at a time, lane by lane; the
-/// sums are added one triangle at a time, in triangle order.
+/// Per-triangle and per-corner arithmetic runs a batch of triangles at a time, lane by lane.
 #[inline(always)]
-pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Result<Report, Error> {
-    let Some(texcoords) = mesh.texcoords else {
-        return mark_referenced(mesh, scratch);
-    };
-    let mut report = Report::default();
+fn measure(
+    mesh: &Mesh,
+    texcoords: Strided<[f32; 2]>,
+    options: &Options,
+    triangles: Range<usize>,
+    keep: impl Fn(&[usize; 3]) -> bool,
+    mut visit: impl FnMut(usize, usize, usize, CornerTerm),
+) -> Result<(), Error> {
     let v_sign = if options.flip_v { -1.0 } else { 1.0 };
-    let owned = scratch.first..scratch.first + scratch.flags.len();
-    let triangles = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
-    let mut reader = BatchReader::new(
-        mesh,
-        texcoords,
-        triangles,
-        |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v)),
-        true,
-    );
+    let mut reader = BatchReader::new(mesh, texcoords, triangles, keep, true);
     // Each in its own let, so that the 16 KiB of lanes are built in place rather than moved.
     let mut batch = TriangleBatch::new();
     let mut faces = Faces::new();
@@ -356,14 +424,19 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
         sides.classify(&faces, &batch);
         corners.weigh(options.method, &faces, &batch);
         for lane in 0..batch.len {
+            let t = batch.triangle[lane];
             if faces.valid[lane] == 0 {
-                if scratch.slot(batch.vertex[0][lane]).is_some() {
-                    report.note_degenerate(batch.triangle[lane]);
-                }
-                for corner in &batch.vertex {
-                    if let Some(slot) = scratch.slot(corner[lane]) {
-                        scratch.flags[slot] |= flag::REFERENCED;
-                    }
+                for (k, corner) in batch.vertex.iter().enumerate() {
+                    let flags = flag::REFERENCED;
+                    visit(
+                        t,
+                        k,
+                        corner[lane],
+                        CornerTerm {
+                            flags,
+                            ..CornerTerm::default()
+                        },
+                    );
                 }
                 continue;
             }
@@ -373,21 +446,126 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
                 flag::NEGATIVE_UV
             };
             for (k, corner) in batch.vertex.iter().enumerate() {
-                let Some(slot) = scratch.slot(corner[lane]) else {
-                    continue;
+                let tangent = &corners.tangent[k];
+                let term = CornerTerm {
+                    tangent: [tangent[0][lane], tangent[1][lane], tangent[2][lane]],
+                    weight: corners.weight[k][lane],
+                    flags: flag::REFERENCED | orientation,
+                    side: if sides.right_handed[k][lane] != 0 {
+                        PRIMARY
+                    } else {
+                        SECONDARY
+                    },
+                    ..CornerTerm::default()
                 };
-                let sums = &mut scratch.sums[slot];
-                let side = if sides.right_handed[k][lane] != 0 {
-                    &mut sums.primary
-                } else {
-                    &mut sums.secondary
-                };
-                for (sum, tangent) in side.iter_mut().zip(&corners.tangent[k]) {
-                    *sum += tangent[lane];
-                }
-                sums.weight += corners.weight[k][lane];
-                scratch.flags[slot] |= flag::REFERENCED | orientation;
+                visit(t, k, corner[lane], term);
             }
+        }
+    }
+    Ok(())
+}
+
+/// Adds each triangle's corner terms ([`measure`]) to the vertices `scratch` holds, one triangle
+/// at a time, in triangle order. Degenerate triangles only mark their vertices used, and are
+/// counted where `scratch` holds their first vertex.
+#[inline(always)]
+pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Result<Report, Error> {
+    let Some(texcoords) = mesh.texcoords else {
+        return mark_referenced(mesh, scratch);
+    };
+    let mut report = Report::default();
+    let owned = scratch.first..scratch.first + scratch.flags.len();
+    let triangles = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
+    let keep = |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v));
+    measure(mesh, texcoords, options, triangles, keep, |t, k, v, term| {
+        let Some(slot) = scratch.slot(v) else {
+            return;
+        };
+        if k == 0 && term.side == NONE {
+            report.note_degenerate(t);
+        }
+        term.add_to(&mut scratch.sums[slot], &mut scratch.flags[slot]);
+    })?;
+    Ok(report)
+}
+
+/// Triangles per chunk of [`accumulate_in_chunks`]: the workers start once per chunk, and a
+/// chunk's corner terms (1.2 MB) stay in the cache until they are added. Unit tests cut small meshes
+/// into several chunks too (`thread_count_tests.rs`).
+const CHUNK_TRIANGLES: usize = if cfg!(test) { 64 } else { 16 * 1024 };
+
+/// Per worker, a list of corner terms for each part.
+type TermLists = Vec<Vec<Vec<CornerTerm>>>;
+
+/// [`accumulate`] on several workers whatever the mesh's vertex order, with the same bits:
+/// `parts` are the scratch of consecutive vertex ranges ending at `ends`. Each worker measures a
+/// consecutive range of each chunk of triangles, keeping each corner's term in a list for the
+/// part that holds its vertex; in the next round each part adds its lists, from the first range to
+/// the last, so that every vertex still adds its terms in triangle order. Round `r` adds chunk
+/// `r - 1` and measures chunk `r`.
+pub fn accumulate_in_chunks(
+    mesh: &Mesh,
+    options: &Options,
+    parts: Vec<Scratch>,
+    ends: &[usize],
+) -> Result<Report, Error> {
+    let Some(texcoords) = mesh.texcoords else {
+        return parallel::merge(parallel::run(parts, |mut part| mark_referenced(mesh, &mut part)));
+    };
+    let workers = parts.len();
+    let triangle_count = mesh.indices.triangle_count(mesh.vertex_count())?;
+    let mut report = Report::default();
+    // Room for a range's terms in each list, more than its share: a list grows only when one
+    // part holds most of a range's vertices.
+    let room = 2 * 3 * CHUNK_TRIANGLES / (workers * workers);
+    let empty = || -> TermLists {
+        (0..workers)
+            .map(|_| (0..workers).map(|_| Vec::with_capacity(room)).collect())
+            .collect()
+    };
+    let (mut filled, mut spare) = (empty(), empty());
+    let mut parts: Vec<(usize, Scratch)> = parts.into_iter().enumerate().collect();
+    for round in 0..=triangle_count.div_ceil(CHUNK_TRIANGLES) {
+        let chunk = (round * CHUNK_TRIANGLES).min(triangle_count)..((round + 1) * CHUNK_TRIANGLES).min(triangle_count);
+        let previous = &filled;
+        let jobs: Vec<_> = parts.into_iter().zip(spare).collect();
+        let done = parallel::run(jobs, |((d, part), mut lists)| {
+            for term in previous.iter().flat_map(|worker_lists| &worker_lists[d]) {
+                let slot = term.vertex as usize - part.first;
+                term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
+            }
+            lists.iter_mut().for_each(Vec::clear);
+            let at = |w: usize| chunk.start + chunk.len() * w / workers;
+            let found = simd::run(|| {
+                let mut found = Report::default();
+                let everything = |_: &[usize; 3]| true;
+                measure(
+                    mesh,
+                    texcoords,
+                    options,
+                    at(d)..at(d + 1),
+                    everything,
+                    |t, k, v, term| {
+                        if k == 0 && term.side == NONE {
+                            found.note_degenerate(t);
+                        }
+                        let term = CornerTerm {
+                            vertex: v as u32,
+                            ..term
+                        };
+                        lists[ends.partition_point(|&end| end <= v)].push(term);
+                    },
+                )
+                .map(|()| found)
+            });
+            ((d, part), lists, found)
+        });
+        spare = filled;
+        (parts, filled) = (Vec::with_capacity(workers), Vec::with_capacity(workers));
+        for (part, lists, found) in done {
+            report.merge(&found?);
+            parts.push(part);
+            filled.push(lists);
         }
     }
     Ok(report)
