@@ -399,8 +399,8 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     );
 
     // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace),
-    //     on ranges of good triangles: a worker evaluates the groups with a corner in its range
-    //     and writes those corners (a group straddling two ranges is evaluated twice, alike).
+    //     on ranges of groups: a worker writes the corners in its range of good triangles, the
+    //     others once every worker is done.
     let starts = &groups.starts[..group_count + 1];
     let largest = starts.windows(2).map(|w| (w[1] - w[0]) as usize).max().unwrap_or(0);
     // Ranges of whole groups on separate threads, cut where the ranges of their members would be.
@@ -443,25 +443,40 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let triangle_ends = triangle_ranges.ends();
     let starts = core::iter::once(0).chain(triangle_ends.iter().copied());
     let mut first_terms = Some(terms);
-    let parts = threads::split(b.tangents, triangle_ends, 3)
-        .zip(threads::split(b.orientation, triangle_ends, 3))
+    // Empty until a range spills: one range allocates nothing.
+    let mut spilled: [Vec<tspace::Spilled>; threads::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    let parts = threads::split(&mut *b.tangents, triangle_ends, 3)
+        .zip(threads::split(&mut *b.orientation, triangle_ends, 3))
         .zip(starts.zip(ends.iter()))
-        .map(move |((tangents, orientation), (first_triangle, &end))| {
-            (tangents, orientation, first_triangle, end as u32, first_terms.take())
+        .zip(spilled.iter_mut())
+        .map(move |(((tangents, orientation), (first_triangle, &end)), spilled)| {
+            (
+                tangents,
+                orientation,
+                first_triangle,
+                end as u32,
+                spilled,
+                first_terms.take(),
+            )
         });
     let groups = &groups;
     threads::run(
         ends,
         parts,
-        |first, (tangents, orientation, first_triangle, end, terms)| {
+        |first, (tangents, orientation, first_triangle, end, spilled, terms)| {
             let mut out = tspace::Written {
                 tangents,
                 orientation,
                 goods: first as u32..end,
                 first_triangle,
+                spilled,
             };
+            // Each worker evaluates as many groups, whatever their triangles: a vertex's
+            // triangles can lie far apart in the triangle order.
+            let part = ends.partition_point(|&end| end <= first);
+            let own_groups = group_count * part / ends.len()..group_count * (part + 1) / ends.len();
             let mut evaluate = |terms: &mut MemberTerms| {
-                for group in 0..group_count {
+                for group in own_groups.clone() {
                     let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
                     tspace::evaluate_group(
                         &inputs,
@@ -479,6 +494,11 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             }
         },
     );
+
+    for &(corner, tangent, preserving) in spilled.iter().flatten() {
+        b.tangents[corner as usize] = tangent;
+        b.orientation[corner as usize] = preserving;
+    }
 
     // 11. Degenerate triangles copy the first good corner of the same welded vertex
     //     (DegenEpilogue).

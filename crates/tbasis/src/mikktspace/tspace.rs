@@ -61,18 +61,22 @@ impl MemberTerms<'_> {
     }
 }
 
+/// A corner (its index), its tangent and its orientation, for another worker's range.
+pub(crate) type Spilled = (u32, Vec3, u8);
+
 /// Where one worker writes: the corners of the good triangles `goods`, its part of the per-corner
-/// arrays beginning with triangle `first_triangle`.
+/// arrays beginning with triangle `first_triangle`; the corners of its groups outside its range
+/// go to `spilled`, written once every worker is done.
 pub(crate) struct Written<'a> {
     pub tangents: &'a mut [Vec3],
     pub orientation: &'a mut [u8],
     pub goods: core::ops::Range<u32>,
     pub first_triangle: usize,
+    pub spilled: &'a mut Vec<Spilled>,
 }
 
-/// Writes the tangent and orientation of the corners, among those `out` takes, of the group's
-/// triangles `faces` (in ascending order) around welded vertex `vertex`. A group with no such
-/// corner is skipped; one whose corners two workers take is evaluated by both, alike.
+/// Writes the tangent and orientation of the corners of the group's triangles `faces` (in
+/// ascending order) around welded vertex `vertex`: those outside `out`'s range are spilled.
 pub(crate) fn evaluate_group(
     inputs: &Inputs,
     faces: &[u32],
@@ -81,10 +85,6 @@ pub(crate) fn evaluate_group(
     terms: &mut MemberTerms,
     out: &mut Written,
 ) {
-    let first_taken = faces.partition_point(|&f| f < out.goods.start);
-    if faces.get(first_taken).is_none_or(|&f| f >= out.goods.end) {
-        return;
-    }
     let count = faces.len();
     let n = normal(&inputs.attributes[vertex as usize]);
     let usable = |f: u32| inputs.flags[f as usize] & GROUP_WITH_ANY == 0;
@@ -104,11 +104,14 @@ pub(crate) fn evaluate_group(
     let usable = |j: usize| usable(faces[j]);
     let sum = |chosen: &mut dyn Iterator<Item = usize>| weighted_sum(chosen.map(|j| (angle[j], s[j])));
     let write = |j: usize, tangent: Vec3, out: &mut Written| {
+        let (triangle, k) = (inputs.order[faces[j] as usize] as usize, terms.corner[j] as usize % 3);
         if out.goods.contains(&faces[j]) {
-            let triangle = inputs.order[faces[j] as usize] as usize - out.first_triangle;
-            let corner = 3 * triangle + terms.corner[j] as usize % 3;
+            let corner = 3 * (triangle - out.first_triangle) + k;
             out.tangents[corner] = tangent;
             out.orientation[corner] = u8::from(preserving);
+        } else {
+            out.spilled
+                .push(((3 * triangle + k) as u32, tangent, u8::from(preserving)));
         }
     };
 
