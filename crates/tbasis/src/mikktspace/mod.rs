@@ -21,7 +21,6 @@ mod vector;
 mod weld;
 
 use core::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Mutex, PoisonError};
 
 use glam::Vec3 as GlamVec3;
 
@@ -172,28 +171,11 @@ pub(crate) fn generate_corners(
             part.set(i, frame(tangents, orientation, first + i));
         }
     };
-    let mut count = || count_vertices(mesh, tangents, orientation, slots, table, report);
-    let writers = threads::ranges(options.threads, mesh.corner_count() / 3).ends().len() as u64;
-    if writers == 1 {
-        count();
-        write(0, output.reborrow());
-    } else {
-        // The counts go beside the writes: the thread that counts writes a range half as long as
-        // each other thread's (range k ends at (2k - 1) / (2n - 1) of the corners).
-        let corners = mesh.corner_count() as u64;
-        let ends =
-            threads::Ranges::from_ends((1..=writers).map(|k| (corners * (2 * k - 1) / (2 * writers - 1)) as usize));
-        let starts = core::iter::once(0).chain(ends.ends().iter().copied());
-        let count = Mutex::new(Some(count));
-        let jobs: Vec<_> = starts.zip(output.split(ends.ends())).collect();
-        parallel::run(jobs, |(first, part)| {
-            if first == 0 {
-                if let Some(mut count) = count.lock().unwrap_or_else(PoisonError::into_inner).take() {
-                    count();
-                }
-            }
-            write(first, part)
-        });
+    count_vertices(mesh, options.threads, tangents, orientation, slots, table, report);
+    let ranges = threads::item_ranges(options.threads, mesh.corner_count(), 3);
+    match ranges.ends() {
+        [_] => write(0, output.reborrow()),
+        ends => threads::run(ends, output.split(ends).into_iter(), write),
     }
     Ok(())
 }
@@ -215,7 +197,7 @@ pub(crate) fn generate_vertices(
         table,
         ..
     } = buffers;
-    count_vertices(mesh, tangents, orientation, slots, table, report);
+    count_vertices(mesh, options.threads, tangents, orientation, slots, table, report);
     let mut out = output.whole();
     for (v, &first) in slots[..mesh.vertex_count()].iter().enumerate() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
@@ -530,9 +512,11 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 }
 
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
-/// mirrored (corners of both signs) and split (corners that differ in any bit).
+/// mirrored (corners of both signs) and split (corners that differ in any bit). Ranges of vertices
+/// on separate threads, each worker reading every corner and keeping those of its vertices.
 fn count_vertices(
     mesh: &Mesh,
+    threads: u32,
     tangents: &[Vec3],
     orientation: &[u8],
     slots: &mut [u32],
@@ -542,29 +526,44 @@ fn count_vertices(
     const MIRRORED: u32 = 1;
     const SPLIT: u32 = 2;
     let vertex_count = mesh.vertex_count();
-    let first = &mut slots[..vertex_count];
-    let marks = &mut table[..vertex_count];
-    first.fill(NONE);
-    marks.fill(0);
-    for c in 0..mesh.corner_count() {
-        let v = mesh.indices.corner(c);
-        if first[v] == NONE {
-            first[v] = c as u32;
-            continue;
+    let ranges = threads::item_ranges(threads, vertex_count, 1);
+    let ends = ranges.ends();
+    // Per range: unreferenced, mirrored and split vertices.
+    let mut counts = [[0usize; 3]; threads::MAX_RANGES];
+    let parts = threads::split(&mut slots[..vertex_count], ends, 1)
+        .zip(threads::split(&mut table[..vertex_count], ends, 1))
+        .zip(counts.iter_mut());
+    threads::run(ends, parts, |start, ((first, marks), counts)| {
+        first.fill(NONE);
+        marks.fill(0);
+        for c in 0..mesh.corner_count() {
+            let Some(v) = mesh.indices.corner(c).checked_sub(start).filter(|&v| v < first.len()) else {
+                continue;
+            };
+            if first[v] == NONE {
+                first[v] = c as u32;
+                continue;
+            }
+            let f = first[v] as usize;
+            if orientation[f] != orientation[c] {
+                marks[v] |= MIRRORED;
+            }
+            let same =
+                orientation[f] == orientation[c] && tangents[f].map(f32::to_bits) == tangents[c].map(f32::to_bits);
+            if !same {
+                marks[v] |= SPLIT;
+            }
         }
-        let f = first[v] as usize;
-        if orientation[f] != orientation[c] {
-            marks[v] |= MIRRORED;
+        for (&f, &m) in first.iter().zip(marks.iter()) {
+            counts[0] += usize::from(f == NONE);
+            counts[1] += usize::from(m & MIRRORED != 0);
+            counts[2] += usize::from(m & SPLIT != 0);
         }
-        let same = orientation[f] == orientation[c] && tangents[f].map(f32::to_bits) == tangents[c].map(f32::to_bits);
-        if !same {
-            marks[v] |= SPLIT;
-        }
-    }
-    for v in 0..vertex_count {
-        report.unreferenced_vertices += usize::from(first[v] == NONE);
-        report.mirrored_vertices += usize::from(marks[v] & MIRRORED != 0);
-        report.split_vertices += usize::from(marks[v] & SPLIT != 0);
+    });
+    for [unreferenced, mirrored, split] in &counts[..ends.len()] {
+        report.unreferenced_vertices += unreferenced;
+        report.mirrored_vertices += mirrored;
+        report.split_vertices += split;
     }
 }
 
