@@ -158,20 +158,11 @@ pub(crate) fn generate_corners(
     report: &mut Report,
 ) -> Result<(), Error> {
     let buffers = compute(mesh, options, bytes, report)?;
-    let Buffers {
-        tangents,
-        orientation,
-        slots,
-        table,
-        ..
-    } = buffers;
-    let (tangents, orientation) = (&*tangents, &*orientation);
     let write = |first: usize, mut part: StridedMut<[f32; 4]>| {
         for i in 0..part.len() {
-            part.set(i, frame(tangents, orientation, first + i));
+            part.set(i, frame(&buffers, first + i));
         }
     };
-    count_vertices(mesh, options.threads, tangents, orientation, slots, table, report);
     let ranges = threads::item_ranges(options.threads, mesh.corner_count(), 3);
     match ranges.ends() {
         [_] => write(0, output.reborrow()),
@@ -190,23 +181,15 @@ pub(crate) fn generate_vertices(
     report: &mut Report,
 ) -> Result<(), Error> {
     let buffers = compute(mesh, options, bytes, report)?;
-    let Buffers {
-        tangents,
-        orientation,
-        slots,
-        table,
-        ..
-    } = buffers;
-    count_vertices(mesh, options.threads, tangents, orientation, slots, table, report);
     let mut out = output.whole();
-    for (v, &first) in slots[..mesh.vertex_count()].iter().enumerate() {
+    for (v, &first) in buffers.slots[..mesh.vertex_count()].iter().enumerate() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
         let unit = crate::robust::frame::VertexNormal::new(normal.to_array()).unit;
         let (tangent, w) = if first == NONE {
             report.fallback_vertices += 1;
             resolve::fallback(unit)
         } else {
-            let [x, y, z, w] = frame(tangents, orientation, first as usize);
+            let [x, y, z, w] = frame(&buffers, first as usize);
             (GlamVec3::new(x, y, z), w)
         };
         // LEGACY keeps the caller's normal as given; the other policies promise a unit bitangent,
@@ -221,13 +204,13 @@ pub(crate) fn generate_vertices(
 }
 
 /// Corner `c`'s tangent and sign as `setTSpaceBasic` receives them.
-fn frame(tangents: &[Vec3], orientation: &[u8], c: usize) -> [f32; 4] {
-    let [x, y, z] = tangents[c];
-    [x, y, z, if orientation[c] != 0 { 1.0 } else { -1.0 }]
+fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
+    let [x, y, z] = buffers.tangents[c];
+    [x, y, z, if buffers.orientation[c] != 0 { 1.0 } else { -1.0 }]
 }
 
-/// Every corner's tangent and orientation (in the buffers laid out in `bytes`) and the report but
-/// for [`count_vertices`]. Fails before anything reaches the caller's output.
+/// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
+/// (in `slots`) every vertex's first corner. Fails before anything reaches the caller's output.
 fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut Report) -> Result<Buffers<'a>, Error> {
     if mesh.vertex_count() == 0 {
         // No scratch was asked for: any index is out of range, or there is nothing to do.
@@ -284,6 +267,7 @@ fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut
         repair::repair(mesh, options.degenerate_policy, buffers.tangents, buffers.slots, report);
         report.abnormal_normals = resolve::count_abnormal_normals(mesh);
     }
+    count_vertices(mesh, options.threads, &mut buffers, report);
     Ok(buffers)
 }
 
@@ -514,15 +498,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
 /// mirrored (corners of both signs) and split (corners that differ in any bit). Ranges of vertices
 /// on separate threads, each worker reading every corner and keeping those of its vertices.
-fn count_vertices(
-    mesh: &Mesh,
-    threads: u32,
-    tangents: &[Vec3],
-    orientation: &[u8],
-    slots: &mut [u32],
-    table: &mut [u32],
-    report: &mut Report,
-) {
+fn count_vertices(mesh: &Mesh, threads: u32, buffers: &mut Buffers, report: &mut Report) {
     const MIRRORED: u32 = 1;
     const SPLIT: u32 = 2;
     let vertex_count = mesh.vertex_count();
@@ -530,8 +506,9 @@ fn count_vertices(
     let ends = ranges.ends();
     // Per range: unreferenced, mirrored and split vertices.
     let mut counts = [[0usize; 3]; threads::MAX_RANGES];
-    let parts = threads::split(&mut slots[..vertex_count], ends, 1)
-        .zip(threads::split(&mut table[..vertex_count], ends, 1))
+    let (tangents, orientation) = (&*buffers.tangents, &*buffers.orientation);
+    let parts = threads::split(&mut buffers.slots[..vertex_count], ends, 1)
+        .zip(threads::split(&mut buffers.table[..vertex_count], ends, 1))
         .zip(counts.iter_mut());
     threads::run(ends, parts, |start, ((first, marks), counts)| {
         first.fill(NONE);
