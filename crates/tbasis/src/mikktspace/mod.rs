@@ -365,31 +365,12 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     );
 
     // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace),
-    //     on ranges of groups: a worker writes the corners in its range of good triangles, the
-    //     others once every worker is done.
+    //     on ranges of groups of about as many members each (a vertex's triangles can lie far
+    //     apart in the triangle order): a worker sorts its groups' triangles, evaluates the
+    //     groups, and writes the corners in its range of good triangles, the others (spilled)
+    //     once every worker is done.
     let starts = &groups.starts[..group_count + 1];
     let largest = starts.windows(2).map(|w| (w[1] - w[0]) as usize).max().unwrap_or(0);
-    // Ranges of whole groups on separate threads, cut where the ranges of their members would be.
-    let member_ranges = threads::item_ranges(threads, starts[group_count] as usize, 3);
-    let member_ends = threads::Ranges::from_ends(
-        member_ranges
-            .ends()
-            .iter()
-            .map(|&end| starts[starts.partition_point(|&s| (s as usize) < end)] as usize),
-    );
-    let ends = member_ends.ends();
-    threads::run(ends, threads::split(&mut *groups.faces, ends, 1), |first, faces| {
-        let local = starts
-            .iter()
-            .map(|&s| s as usize)
-            .skip_while(|&s| s < first)
-            .map(|s| s - first);
-        let (mut begin, len) = (0, faces.len());
-        for end in local.take_while(|&end| end <= len).skip(1) {
-            faces[begin..end].sort_unstable();
-            begin = end;
-        }
-    });
     let inputs = Inputs {
         attributes: packed,
         ids,
@@ -407,59 +388,48 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
                 .map(|&end| if end == good { triangles } else { order[end] as usize }),
         );
     let triangle_ends = triangle_ranges.ends();
-    let starts = core::iter::once(0).chain(triangle_ends.iter().copied());
+    let members = starts[group_count] as usize;
+    let group_ranges = threads::Ranges::from_ends(
+        parallel::ends(members, ends.len()).map(|end| starts.partition_point(|&s| (s as usize) < end)),
+    );
+    let group_ends = group_ranges.ends();
+    let member_ends = threads::Ranges::from_ends(group_ends.iter().map(|&g| starts[g] as usize));
+    let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
+    let first_groups = core::iter::once(0).chain(group_ends.iter().copied());
     let mut first_terms = Some(terms);
     // Empty until a range spills: one range allocates nothing.
     let mut spilled: [Vec<tspace::Spilled>; threads::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
     let parts = threads::split(&mut *b.tangents, triangle_ends, 3)
         .zip(threads::split(&mut *b.orientation, triangle_ends, 3))
-        .zip(starts.zip(ends.iter()))
+        .zip(threads::split(&mut *groups.faces, member_ends.ends(), 1))
+        .zip(first_triangles.zip(ends.iter()))
+        .zip(first_groups.zip(group_ends.iter()))
         .zip(spilled.iter_mut())
-        .map(move |(((tangents, orientation), (first_triangle, &end)), spilled)| {
-            (
-                tangents,
-                orientation,
-                first_triangle,
-                end as u32,
-                spilled,
-                first_terms.take(),
-            )
-        });
-    let groups = &groups;
-    threads::run(
-        ends,
-        parts,
-        |first, (tangents, orientation, first_triangle, end, spilled, terms)| {
-            let mut out = tspace::Written {
-                tangents,
-                orientation,
-                goods: first as u32..end,
-                first_triangle,
-                spilled,
-            };
-            // Each worker evaluates as many groups, whatever their triangles: a vertex's
-            // triangles can lie far apart in the triangle order.
-            let part = ends.partition_point(|&end| end <= first);
-            let own_groups = group_count * part / ends.len()..group_count * (part + 1) / ends.len();
-            let mut evaluate = |terms: &mut MemberTerms| {
-                for group in own_groups.clone() {
-                    let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
-                    tspace::evaluate_group(
-                        &inputs,
-                        &groups.faces[range],
-                        groups.vertex[group],
-                        groups.orientation[group] != 0,
-                        terms,
-                        &mut out,
-                    );
-                }
-            };
-            match terms {
-                Some(mut terms) => evaluate(&mut terms),
-                None => MemberTerms::with_owned(largest, evaluate),
+        .map(move |parts| (parts, first_terms.take()));
+    let (vertices, orientations) = (&*groups.vertex, &*groups.orientation);
+    threads::run(ends, parts, |first, (parts, terms)| {
+        let (((((tangents, orientation), faces), (first_triangle, &end)), (first_group, &end_group)), spilled) = parts;
+        let mut out = tspace::Written {
+            tangents,
+            orientation,
+            goods: first as u32..end as u32,
+            first_triangle,
+            spilled,
+        };
+        let base = starts[first_group] as usize;
+        let mut evaluate = |terms: &mut MemberTerms| {
+            for group in first_group..end_group {
+                let members = &mut faces[starts[group] as usize - base..starts[group + 1] as usize - base];
+                members.sort_unstable();
+                let preserving = orientations[group] != 0;
+                tspace::evaluate_group(&inputs, members, vertices[group], preserving, terms, &mut out);
             }
-        },
-    );
+        };
+        match terms {
+            Some(mut terms) => evaluate(&mut terms),
+            None => MemberTerms::with_owned(largest, evaluate),
+        }
+    });
 
     for &(corner, tangent, preserving) in spilled.iter().flatten() {
         b.tangents[corner as usize] = tangent;
