@@ -96,20 +96,16 @@ impl RandomMesh {
         for i in (1..new_of.len()).rev() {
             new_of.swap(i, bits.below(i + 1));
         }
-        let mut moved = |list: &mut Vec<_>| {
+        fn moved<T: Copy>(list: &mut Vec<T>, new_of: &[u32]) {
             let mut out = list.clone();
             for (old, &new) in new_of.iter().enumerate() {
                 out[new as usize] = list[old];
             }
             *list = out;
-        };
-        moved(&mut self.positions);
-        moved(&mut self.normals);
-        let mut texcoords = self.texcoords.clone();
-        for (old, &new) in new_of.iter().enumerate() {
-            texcoords[new as usize] = self.texcoords[old];
         }
-        self.texcoords = texcoords;
+        moved(&mut self.positions, &new_of);
+        moved(&mut self.normals, &new_of);
+        moved(&mut self.texcoords, &new_of);
         for index in indices.iter_mut() {
             *index = new_of[*index as usize];
         }
