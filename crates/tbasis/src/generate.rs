@@ -139,9 +139,10 @@ pub(crate) fn resolve_measured(
     //    (LEGACY stays on one thread there).
     let legacy = options.degenerate_policy == DegeneratePolicy::Legacy && mesh.texcoords.is_some();
     let local_workers = parallel::worker_count(options.threads, mesh);
-    let workers = match legacy {
-        true => local_workers,
-        false => parallel::workers_for(options.threads, vertex_count),
+    let workers = if legacy {
+        local_workers
+    } else {
+        parallel::workers_for(options.threads, vertex_count)
     };
     let accumulate_range = |part: &mut Scratch| match (legacy, mesh.texcoords) {
         (true, Some(uvs)) => legacy::accumulate(mesh, uvs, options.flip_v, part),

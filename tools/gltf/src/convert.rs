@@ -329,7 +329,8 @@ fn glb_bin<'a>(asset: &'a Asset, grown: Option<&'a Grown>) -> Option<Vec<&'a [u8
         }
         Some((base, bytes)) => {
             let old = asset.root.buffers[0].byte_length.0 as usize;
-            vec![&data[..old], &[0; 3][..base - old], bytes]
+            debug_assert_eq!(*base, old.next_multiple_of(4));
+            vec![&data[..old], io::glb_padding(old), bytes]
         }
     })
 }
