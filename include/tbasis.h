@@ -32,7 +32,9 @@
 #define TBASIS_METHOD_LENGYEL 1
 
 // `method` (the default): each triangle's tangent projected into the vertex's tangent plane,
-// normalized and weighted by the corner angle measured in that plane (MikkTSpace's weighting).
+// normalized and weighted by the corner angle measured in that plane, in mikktspace.c's
+// arithmetic: per vertex, mikktspace.c's frame for the vertex's first corner wherever the vertex's
+// triangles and normal are clean (see the README's "Methods").
 #define TBASIS_METHOD_ANGLE 2
 
 // `method`: unit face tangents weighted by triangle area.

@@ -12,7 +12,9 @@ pub const TBASIS_INDEX_U32: u32 = 2;
 /// `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
 pub const TBASIS_METHOD_LENGYEL: u32 = 1;
 /// `method` (the default): each triangle's tangent projected into the vertex's tangent plane,
-/// normalized and weighted by the corner angle measured in that plane (MikkTSpace's weighting).
+/// normalized and weighted by the corner angle measured in that plane, in mikktspace.c's
+/// arithmetic: per vertex, mikktspace.c's frame for the vertex's first corner wherever the vertex's
+/// triangles and normal are clean (see the README's "Methods").
 pub const TBASIS_METHOD_ANGLE: u32 = 2;
 /// `method`: unit face tangents weighted by triangle area.
 pub const TBASIS_METHOD_AREA: u32 = 3;

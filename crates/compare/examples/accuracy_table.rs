@@ -67,25 +67,36 @@ fn main() {
          Mean and 99th-percentile angle (degrees) between each vertex's tangent and the true one \
          (the surface's analytic dP/ds projected onto the vertex's tangent plane), and the share of \
          vertices whose handedness `w` is wrong, for the default method (ANGLE, default options) and \
-         for mikktspace.c (`mikktspace-sys`, each vertex taking its first corner's frame). Ratios \
-         above 1 are scenes where the default is less accurate. Scenes: `tests/common/scenes.rs`; \
+         for mikktspace.c (`mikktspace-sys`, each vertex taking its first corner's frame), and how \
+         many vertices get exactly mikktspace.c's bits from the default (which sums mikktspace.c's \
+         own terms: README, \"Methods\"). Ratios above 1 would be scenes where the default is less \
+         accurate. Scenes: `tests/common/scenes.rs`; \
          the first seven are the chart's, the others were grown for this table: coarse grids, a \
          height field, non-uniformly scaled tori (x 1, 0.5, 2) and spheres (x 1.6, 1, 0.6), \
          jittered texture coordinates (by up to 0.1 of a cell) and quantised ones (to 1/256 or \
          1/1024); the truth is the smooth map's, so texture noise counts as error.\n\n\
          Reproduce (seconds; writes this file):\n\n\
          ```text\ncargo run --release -p tbasis-compare --example accuracy_table\n```\n\n\
-         | scene | size | default mean | mikktspace.c mean | ratio | default p99 | mikktspace.c p99 | ratio | wrong w default / mikktspace.c |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|---:|\n",
+         | scene | size | vertices with mikktspace.c's bits | default mean | mikktspace.c mean | ratio | default p99 | mikktspace.c p99 | ratio | wrong w default / mikktspace.c |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     // Scenes where the default is less accurate at all, and by more than 0.1%; the largest ratios.
     let (mut worse_mean, mut worse_p99, mut clearly_worse) = (0, 0, 0);
     let (mut worst_mean, mut worst_p99) = ((0.0f64, String::new()), (0.0f64, String::new()));
+    // Vertices with mikktspace.c's bits, of all vertices.
+    let (mut same_total, mut vertex_total) = (0, 0);
     let specs = scenes::accuracy_specs();
     for spec in &specs {
         let scene = scenes::build(spec);
-        let ours: Accuracy = scenes::accuracy(&scene, &library(&scene, &Options::default()));
-        let theirs: Accuracy = scenes::accuracy(&scene, &mikktspace_c(&scene));
+        let (ours_frames, theirs_frames) = (library(&scene, &Options::default()), mikktspace_c(&scene));
+        let same_bits = ours_frames
+            .iter()
+            .zip(&theirs_frames)
+            .filter(|(a, b)| a.map(f32::to_bits) == b.map(f32::to_bits))
+            .count();
+        (same_total, vertex_total) = (same_total + same_bits, vertex_total + ours_frames.len());
+        let ours: Accuracy = scenes::accuracy(&scene, &ours_frames);
+        let theirs: Accuracy = scenes::accuracy(&scene, &theirs_frames);
         worse_mean += usize::from(ours.mean_deg > theirs.mean_deg);
         worse_p99 += usize::from(ours.p99_deg > theirs.p99_deg);
         let (mean_ratio, p99_ratio) = (ours.mean_deg / theirs.mean_deg, ours.p99_deg / theirs.p99_deg);
@@ -98,9 +109,10 @@ fn main() {
             worst_p99 = (p99_ratio, label());
         }
         let line = format!(
-            "| {} | {} | {:.4} | {:.4} | {} | {:.4} | {:.4} | {} | {:.2}% / {:.2}% |",
+            "| {} | {} | {} | {:.4} | {:.4} | {} | {:.4} | {:.4} | {} | {:.2}% / {:.2}% |",
             scene.name,
             size(&scene),
+            same_bits,
             ours.mean_deg,
             theirs.mean_deg,
             ratio(ours.mean_deg, theirs.mean_deg),
@@ -118,7 +130,8 @@ fn main() {
         md,
         "\nOf {} scenes, the default's mean error is above mikktspace.c's on {worse_mean} and its 99th \
          percentile on {worse_p99}; by more than 0.1% on {clearly_worse}. Largest ratios: mean {:.5} \
-         ({}), 99th percentile {:.5} ({}).",
+         ({}), 99th percentile {:.5} ({}). {same_total} of {vertex_total} vertices have exactly \
+         mikktspace.c's bits.",
         specs.len(),
         worst_mean.0,
         worst_mean.1,

@@ -58,6 +58,7 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+mod arc_cosine;
 mod error;
 mod generate;
 mod interleaved;

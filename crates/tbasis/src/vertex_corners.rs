@@ -7,14 +7,14 @@
 //! * Every corner gets its vertex's frame, bit for bit what [`generate`](crate::generate) writes for it.
 //! * Except a corner of a non-degenerate triangle at a mirror fold (a vertex that non-degenerate
 //!   triangles of both UV orientations use) whose frame was measured from its sums: the vertex's
-//!   frame comes from the side whose tangents sum longer, and a corner on the other side
+//!   frame comes from one side (see `resolve::resolve`), and a corner on the other side
 //!   (right-handed corners sum into one side, left-handed into the other, as the sums were built)
 //!   gets the frame resolved from that side's own sum, `w` = that side's handedness, when that sum
 //!   passes the same test the vertex's did (see `resolve::resolve_other_side`).
 //!
 //! So degenerate triangles' corners get their vertex's frame (they added to neither side), and so
-//! do all corners of a fold vertex that inherited its frame or fell back (its longer side had no
-//! usable tangent, so neither side is trusted). Policy LEGACY has no sides: every corner gets its
+//! do all corners of a fold vertex that inherited its frame or fell back (neither side had a
+//! usable tangent). Policy LEGACY has no sides: every corner gets its
 //! vertex's frame.
 //!
 //! [`generate`](crate::generate): crate::generate_into
@@ -113,7 +113,7 @@ impl KeptFrames<'_> {
             |corners| corners.iter().any(|&v| has_side_frame(v)),
             |t, k, v, right_handed| {
                 let w = if right_handed { 1.0 } else { -1.0 };
-                // The vertex's own frame is its longer side's: only the other side differs.
+                // The vertex's own frame is one side's: only the other side differs.
                 if has_side_frame(v) && w != self.sums[v].weight {
                     tangents.set(3 * t + k - first_corner, self.sums[v].kept_side_frame());
                 }

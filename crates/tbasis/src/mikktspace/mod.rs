@@ -8,7 +8,6 @@
 //! time.
 #![forbid(unsafe_code)]
 
-mod acos;
 mod arena;
 mod attributes;
 mod faces;
@@ -17,7 +16,7 @@ mod neighbors;
 mod repair;
 mod threads;
 mod tspace;
-mod vector;
+pub(crate) mod vector;
 mod weld;
 
 use core::sync::atomic::{AtomicBool, Ordering};

@@ -13,13 +13,10 @@ use crate::options::{DegeneratePolicy, Method, Options};
 use crate::report::count_flags;
 use crate::report::Report;
 use crate::robust::accumulate;
-use crate::robust::frame::VertexNormal;
 use crate::robust::frame::{fallback_tangent, NO_NORMAL_TANGENT};
+use crate::robust::frame::{is_unit_and_perpendicular, VertexNormal, FRAME_TOLERANCE};
 use crate::robust::resolve::count_abnormal_normals;
 use crate::scratch::OwnedScratch;
-
-/// How far from unit length, and how far off the tangent plane, a tangent may be.
-const TOLERANCE: f32 = 1e-5;
 
 /// Fails with [`Error::DegenerateUv`], which carries the report, when a triangle is degenerate by
 /// the test every other method's REJECT applies (UV or position quality below the threshold, or
@@ -44,11 +41,9 @@ pub(crate) fn reject_degenerate(mesh: &Mesh, options: &Options) -> Result<(), Er
     Ok(())
 }
 
-/// True when `tangent` is finite, unit length and perpendicular to the unit `normal` (when the
-/// normal has a direction), all within [`TOLERANCE`].
+/// True when `tangent` is a unit tangent perpendicular to `normal`.
 fn usable(tangent: Vec3, normal: Option<GlamVec3>) -> bool {
-    let t = GlamVec3::from_array(tangent);
-    t.is_finite() && (t.length() - 1.0).abs() <= TOLERANCE && normal.is_none_or(|n| n.dot(t).abs() <= TOLERANCE)
+    is_unit_and_perpendicular(GlamVec3::from_array(tangent), normal, FRAME_TOLERANCE)
 }
 
 /// Replaces every corner tangent that is not [`usable`]: under INHERIT by the first usable

@@ -9,11 +9,11 @@
 //! sub-group is the whole group, and one sum serves every corner.
 #![forbid(unsafe_code)]
 
-use super::acos::acos;
 use super::faces::GROUP_WITH_ANY;
 use super::vector::{
     add, dot, normal, normalize, position, project_normalized, scale, sub, vector_not_zero, Packed, Vec3,
 };
+use crate::arc_cosine::acos;
 
 /// Cosine of the default 180-degree angular threshold, as mikktspace.c computes it in float.
 fn threshold_cosine() -> f32 {

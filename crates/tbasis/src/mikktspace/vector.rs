@@ -66,7 +66,7 @@ pub(crate) fn not_zero(x: f32) -> bool {
 
 #[inline(always)]
 pub(crate) fn vector_not_zero(v: Vec3) -> bool {
-    not_zero(v[0]) || not_zero(v[1]) || not_zero(v[2])
+    not_zero(v[0]) | not_zero(v[1]) | not_zero(v[2])
 }
 
 /// `v * (1 / |v|)`, as `Normalize` computes it.

@@ -6,8 +6,10 @@ use core::ops::Range;
 
 use glam::{Vec2, Vec3};
 
+use crate::arc_cosine::acos_lanes;
 use crate::error::Error;
 use crate::mesh::Mesh;
+use crate::mikktspace::vector as mikk;
 use crate::options::{Method, Options};
 use crate::report::Report;
 use crate::robust::batch::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
@@ -29,8 +31,10 @@ struct Faces {
     /// 1 when the fast path's lengths over- or underflowed: the lane is redone with
     /// [`length_and_direction`].
     careful: [u32; LANES],
-    /// Direction of dP/du, unit length.
+    /// Direction of dP/du, unit length: mikktspace.c's where [`Faces::exact`] is 1.
     direction: [Lanes; 3],
+    /// 1 when `direction` is mikktspace.c's unit dP/ds, bit for bit (see [`Faces::solve`]).
+    exact: [u32; LANES],
     /// `|dP/du|`, kept apart from the direction so that neither overflows at extreme UV scales
     /// (UVs of 1e-20 give a length near 1e20, whose square no f32 holds).
     length: Lanes,
@@ -54,6 +58,7 @@ impl Faces {
             valid: [0; LANES],
             careful: [0; LANES],
             direction: [[0.0; LANES]; 3],
+            exact: [0; LANES],
             length: [0.0; LANES],
             edges: [[[0.0; LANES]; 3]; 2],
             face_normal: [[0.0; LANES]; 3],
@@ -69,6 +74,7 @@ impl Faces {
     /// `threshold`.
     #[inline(always)]
     fn solve(&mut self, batch: &TriangleBatch, v_sign: f32, threshold: f32) {
+        let flip_v = v_sign < 0.0;
         let [p0, p1, p2] = &batch.position;
         let [w0, w1, w2] = &batch.texcoord;
         for i in 0..lanes_in_use(batch.len) {
@@ -100,8 +106,27 @@ impl Faces {
             let direction = direction * det.signum();
             let length = numerator_length / (det.abs() * uv_scale);
 
+            // mikktspace.c's unit dP/ds (InitTriInfo, eq. 18) from the unscaled edges, V as given
+            // or 1 - V, operation for operation, wherever its squared length stays well inside
+            // f32's range and its orientation agrees: then a vertex sums exactly mikktspace.c's
+            // terms ([`Corners::weigh_angle`]). Elsewhere the scaled solve above stands.
+            let texture_v = |w: &[Lanes; 2]| if flip_v { 1.0 - w[1][i] } else { w[1][i] };
+            let (t21x, t31x) = (w1[0][i] - w0[0][i], w2[0][i] - w0[0][i]);
+            let (t21y, t31y) = (texture_v(w1) - texture_v(w0), texture_v(w2) - texture_v(w0));
+            let signed_area = t21x * t31y - t21y * t31x;
+            let os = mikk::sub(mikk::scale(t31y, q1.to_array()), mikk::scale(t21y, q2.to_array()));
+            let squared = mikk::dot(os, os);
+            let sign = if signed_area > 0.0 { 1.0 } else { -1.0 };
+            let unit_os = mikk::scale(sign / squared.sqrt(), os);
+            let exact = mikk::not_zero(signed_area)
+                & ((signed_area > 0.0) == (det > 0.0))
+                & (squared > 1e-30)
+                & (squared < 1e30);
+            let direction = if exact { Vec3::from_array(unit_os) } else { direction };
+
             let valid = measurable & uv_shape.at_least(threshold) & position_shape.at_least(threshold);
             self.valid[i] = u32::from(valid);
+            self.exact[i] = u32::from(exact);
             self.careful[i] = u32::from(!(in_range & length.is_finite()));
             set_lane3(&mut self.direction, i, direction.to_array());
             set_lane3(&mut self.edges[0], i, s1.to_array());
@@ -120,8 +145,9 @@ impl Faces {
         }
     }
 
-    /// Lane `i` again, its dP/du from [`length_and_direction`], which survives any finite scale;
-    /// degenerate if even that length is not finite.
+    /// Lane `i` again, its dP/du from [`length_and_direction`], which survives any finite scale
+    /// (the direction stays mikktspace.c's where that one held); degenerate if even that length
+    /// is not finite.
     #[cold]
     fn solve_carefully(&mut self, batch: &TriangleBatch, i: usize, v_sign: f32) {
         let corner = |k: usize| {
@@ -144,7 +170,9 @@ impl Faces {
             self.valid[i] = 0;
             return;
         };
-        set_lane3(&mut self.direction, i, (direction * det.signum()).to_array());
+        if self.exact[i] == 0 {
+            set_lane3(&mut self.direction, i, (direction * det.signum()).to_array());
+        }
         self.length[i] = length;
     }
 }
@@ -193,17 +221,20 @@ impl Corners {
 
     /// What each corner adds to its vertex (normal `n`).
     ///
-    /// LENGYEL adds the unnormalized dP/du, so long or stretched triangles dominate; ANGLE projects
-    /// the face tangent into the vertex's tangent plane, normalizes it and weights it by the
-    /// corner angle measured in that plane (as MikkTSpace does); AREA and UNIFORM add the unit face tangent weighted by
-    /// area or by 1 (per-face averaging). Every weight is scaled by the triangle's confidence.
+    /// LENGYEL adds the unnormalized dP/du, so long or stretched triangles dominate; ANGLE adds
+    /// mikktspace.c's term ([`Corners::weigh_angle`]); AREA and UNIFORM add the unit face tangent
+    /// weighted by area or by 1 (per-face averaging). Every weight is scaled by the triangle's
+    /// confidence.
     #[inline(always)]
     fn weigh(&mut self, method: Method, faces: &Faces, batch: &TriangleBatch) {
         let lanes = lanes_in_use(batch.len);
+        if matches!(method, Method::Angle | Method::Mikktspace) {
+            self.weigh_angle(faces, batch, lanes);
+            return;
+        }
         // One loop per case, with nothing to decide inside: each compiles to SIMD (its closure
         // forced inline: a call per lane would keep the loop scalar).
         for k in 0..3 {
-            let normals = &batch.normal[k];
             match method {
                 Method::Lengyel => self.set(
                     k,
@@ -213,29 +244,8 @@ impl Corners {
                     faces,
                 ),
                 // MIKKTSPACE has its own module and never comes here.
-                Method::Angle | Method::Mikktspace => match k {
-                    0 => self.set(
-                        k,
-                        lanes,
-                        #[inline(always)]
-                        |i| angle_corner(faces, normals, i, |a, b| (a, b)),
-                        faces,
-                    ),
-                    1 => self.set(
-                        k,
-                        lanes,
-                        #[inline(always)]
-                        |i| angle_corner(faces, normals, i, |a, b| (b - a, -a)),
-                        faces,
-                    ),
-                    _ => self.set(
-                        k,
-                        lanes,
-                        #[inline(always)]
-                        |i| angle_corner(faces, normals, i, |a, b| (-b, a - b)),
-                        faces,
-                    ),
-                },
+                // Weighed above.
+                Method::Angle | Method::Mikktspace => {}
                 Method::Area => self.set(
                     k,
                     lanes,
@@ -257,6 +267,75 @@ impl Corners {
         }
     }
 
+    /// ANGLE: mikktspace.c's term per corner (EvalTspace): the face tangent projected into the
+    /// tangent plane of the vertex normal and normalized, weighted by the corner angle between the
+    /// corner's two edges, themselves projected into that plane and normalized,
+    /// `(float)acos((double)cos)`. A vertex whose triangles all have [`Faces::exact`] directions
+    /// and confidence 1 thus sums exactly what mikktspace.c sums for it. A corner whose normal is
+    /// not unit length within 1e-3 (or not finite), or whose edges are far from unit scale, is
+    /// weighed by the scale-free [`angle_corner`] instead.
+    #[inline(always)]
+    fn weigh_angle(&mut self, faces: &Faces, batch: &TriangleBatch, lanes: usize) {
+        let mut tangents = [[[0.0; LANES]; 3]; 3];
+        let mut cosines = [[0.0; LANES]; 3];
+        let mut angles = [[0.0; LANES]; 3];
+        let mut careful = [[0u32; LANES]; 3];
+        let in_range = |e: mikk::Vec3| {
+            let squared = mikk::dot(e, e);
+            (squared > 1e-30) & (squared < 1e30)
+        };
+        for k in 0..3 {
+            let (next, previous) = ((k + 1) % 3, (k + 2) % 3);
+            for i in 0..lanes {
+                let n = lane3(&batch.normal[k], i).to_array();
+                let position = |c: usize| lane3(&batch.position[c], i).to_array();
+                let (e1, e2) = (
+                    mikk::sub(position(previous), position(k)),
+                    mikk::sub(position(next), position(k)),
+                );
+                let tangent = mikk::project_normalized(lane3(&faces.direction, i).to_array(), n);
+                let (v1, v2) = (mikk::project_normalized(e1, n), mikk::project_normalized(e2, n));
+                let cos = mikk::dot(v1, v2);
+                // mikktspace.c's ternaries: a NaN passes through.
+                #[allow(clippy::manual_clamp)]
+                let cos = if cos > 1.0 {
+                    1.0
+                } else if cos < -1.0 {
+                    -1.0
+                } else {
+                    cos
+                };
+                let n_squared = mikk::dot(n, n);
+                let usable = (0.998..=1.002).contains(&n_squared) & in_range(e1) & in_range(e2);
+                careful[k][i] = u32::from(!usable);
+                cosines[k][i] = cos;
+                set_lane3(&mut tangents[k], i, tangent);
+            }
+            acos_lanes(&cosines[k], &mut angles[k], lanes);
+        }
+        for (k, careful) in careful.iter().enumerate() {
+            for i in (0..lanes).filter(|&i| careful[i] != 0) {
+                let edges = |a: Vec3, b: Vec3| match k {
+                    0 => (a, b),
+                    1 => (b - a, -a),
+                    _ => (-b, a - b),
+                };
+                let (tangent, angle) = angle_corner(faces, &batch.normal[k], i, edges);
+                set_lane3(&mut tangents[k], i, tangent.to_array());
+                angles[k][i] = angle;
+            }
+        }
+        for k in 0..3 {
+            self.set(
+                k,
+                lanes,
+                #[inline(always)]
+                |i| (lane3(&tangents[k], i), angles[k][i]),
+                faces,
+            );
+        }
+    }
+
     /// Stores corner `k`'s `tangent * weight` and weight, from the method's `(tangent, weight)`
     /// scaled by the triangle's confidence.
     #[inline(always)]
@@ -271,10 +350,10 @@ impl Corners {
     }
 }
 
-/// ANGLE at one corner: the face tangent projected into the vertex's tangent plane, and the
-/// angle between the corner's edges `edges(Q1', Q2')` projected into that plane too, as
-/// MikkTSpace measures it (on coarse meshes the plane angle, not the 3D one, is what the tangent
-/// plane around the vertex holds).
+/// ANGLE at one corner the scale-free way, for the corners [`Corners::weigh_angle`] cannot weigh
+/// in mikktspace.c's arithmetic: the face tangent projected into the vertex's tangent plane, and
+/// the angle between the corner's edges `edges(Q1', Q2')` projected into that plane too (on coarse
+/// meshes the plane angle, not the 3D one, is what the tangent plane around the vertex holds).
 ///
 /// No projection is formed: projecting along `n` keeps an edge's triple product with `n`, so the
 /// projected edges `e1'`, `e2'` have `|e1' x e2'| = |F . n| / |n|` with `F = e1 x e2` the face
@@ -384,10 +463,16 @@ impl CornerTerm {
     /// Adds the term to its vertex's sums and flags.
     #[inline(always)]
     fn add_to(&self, sums: &mut VertexSums, flags: &mut u8) {
+        let first = *flags & (flag::POSITIVE_UV | flag::NEGATIVE_UV) == 0;
         *flags |= self.flags;
         let side = match self.side {
             PRIMARY => &mut sums.primary,
-            SECONDARY => &mut sums.secondary,
+            SECONDARY => {
+                if first {
+                    *flags |= flag::FIRST_LEFT;
+                }
+                &mut sums.secondary
+            }
             _ => return,
         };
         for (sum, tangent) in side.iter_mut().zip(self.tangent) {

@@ -3,6 +3,8 @@
 
 use glam::Vec3;
 
+use crate::mikktspace::vector::{normalize, vector_not_zero};
+
 /// Removes the normal's component: `T' = T - (N . T) N` (Lengyel 2001, Gram-Schmidt step).
 #[inline(always)]
 pub fn reject_normal(tangent: Vec3, unit_normal: Vec3) -> Vec3 {
@@ -90,6 +92,33 @@ pub fn orthonormalize_fast(tangent: Vec3, n: Vec3) -> (f32, Vec3, bool) {
     let (length, direction, in_range) = length_and_direction_fast(tangent - n * along);
     let exact = (squared > 1e-30 && squared < 1e30) & in_range & (along.abs() <= 8.0 * length);
     (length, direction, exact)
+}
+
+/// How far from unit length, and how far off the tangent plane, a finished tangent may be.
+pub const FRAME_TOLERANCE: f32 = 1e-5;
+
+/// True when `tangent` is finite, unit length and perpendicular to the unit `normal` (when there
+/// is one), all within `tolerance`.
+#[inline(always)]
+pub fn is_unit_and_perpendicular(tangent: Vec3, normal: Option<Vec3>, tolerance: f32) -> bool {
+    let unit = tangent.is_finite() & ((tangent.length() - 1.0).abs() <= tolerance);
+    unit & normal.is_none_or(|n| n.dot(tangent).abs() <= tolerance)
+}
+
+/// A vertex's tangent from its sum: the sum normalized as mikktspace.c normalizes it, where that is
+/// already a unit tangent perpendicular to the normal (ANGLE's terms lie in the tangent plane),
+/// else `orthonormalized`, the sum after Gram-Schmidt. On a vertex whose terms are all
+/// mikktspace.c's, the result is then mikktspace.c's.
+#[inline(always)]
+pub fn finish_tangent(sum: Vec3, orthonormalized: Vec3, normal: Option<Vec3>) -> Vec3 {
+    let sum = sum.to_array();
+    let normalized = Vec3::from_array(if vector_not_zero(sum) { normalize(sum) } else { sum });
+    // A tenth of the promised tolerance: the test itself rounds in f32.
+    if is_unit_and_perpendicular(normalized, normal, 0.1 * FRAME_TOLERANCE) {
+        normalized
+    } else {
+        orthonormalized
+    }
 }
 
 /// A unit tangent orthogonal to the unit normal `n`, from `n` alone.

@@ -8,8 +8,8 @@ use crate::options::DegeneratePolicy;
 use crate::report::Report;
 use crate::robust::batch::{lane3, lanes_in_use, set_lane3, Lanes, LANES};
 use crate::robust::frame::{
-    fallback_tangent, is_unit_length, length_and_direction_fast, orthonormalize, orthonormalize_fast, VertexNormal,
-    NO_NORMAL_TANGENT,
+    fallback_tangent, finish_tangent, is_unit_length, length_and_direction_fast, orthonormalize, orthonormalize_fast,
+    VertexNormal, NO_NORMAL_TANGENT,
 };
 use crate::robust::inherit;
 use crate::scratch::{flag, Scratch, VertexSums};
@@ -18,6 +18,10 @@ use crate::scratch::{flag, Scratch, VertexSums};
 /// went into it is cancellation or rounding noise (mirror contributions meeting head-on, or a
 /// tangent parallel to the normal), not a measurement.
 const USABLE_SHARE: f32 = 1e-3;
+
+/// How many times longer than the first corner's side the other side's sum must be to be kept
+/// instead ([`first_side`]).
+const MAJORITY: f32 = 2.0;
 
 /// The outcome for one vertex.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,12 +32,36 @@ pub enum Resolved {
     Missing,
 }
 
-/// Keeps the handedness whose tangents sum longer (`primary`: right-handed, w = +1), removes the
-/// normal from it and normalizes it, if what is left is usable.
+/// Keeps the handedness [`first_side`] picks (`primary`: right-handed, w = +1), removes the normal
+/// from its sum and normalizes it, if what is left is usable; else the other handedness's,
+/// likewise.
 #[inline(always)]
-pub fn resolve(sums: &VertexSums, normal: Option<Vec3>) -> Resolved {
-    let (sum, w) = longer_side(Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
-    resolve_side(sum, w, sums.weight, normal)
+pub fn resolve(sums: &VertexSums, flags: u8, normal: Option<Vec3>) -> Resolved {
+    let ((first, w), other) = first_side(sums, flags);
+    match resolve_side(Vec3::from_array(first), w, sums.weight, normal) {
+        Resolved::Missing => resolve_side(Vec3::from_array(other), -w, sums.weight, normal),
+        measured => measured,
+    }
+}
+
+/// The side a vertex takes, its `w`, then the other side's sum: the side of its first
+/// non-degenerate corner (mikktspace.c gives a vertex its first corner's frame), unless the other
+/// side's sum is more than [`MAJORITY`] times as long: then most of the angle around the vertex
+/// lies there, and a sliver flipped in UV (down-weighted by its confidence) does not decide.
+#[inline(always)]
+fn first_side(sums: &VertexSums, flags: u8) -> (([f32; 3], f32), [f32; 3]) {
+    let (right, left) = (Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
+    let squared = MAJORITY * MAJORITY;
+    let left_first = if flags & flag::FIRST_LEFT != 0 {
+        left.length_squared() * squared >= right.length_squared()
+    } else {
+        left.length_squared() > squared * right.length_squared()
+    };
+    if left_first {
+        ((sums.secondary, -1.0), sums.primary)
+    } else {
+        ((sums.primary, 1.0), sums.secondary)
+    }
 }
 
 /// The frame of the handedness [`resolve`] did not keep (the one with `w = -kept_w`), by the same
@@ -53,18 +81,10 @@ pub fn resolve_other_side(sums: &VertexSums, kept_w: f32, normal: Option<Vec3>) 
 #[inline(always)]
 fn resolve_side(sum: Vec3, w: f32, weight: f32, normal: Option<Vec3>) -> Resolved {
     match orthonormalize(sum, normal) {
-        Some((in_plane, tangent)) if in_plane > USABLE_SHARE * weight => Resolved::Measured(tangent, w),
+        Some((in_plane, tangent)) if in_plane > USABLE_SHARE * weight => {
+            Resolved::Measured(finish_tangent(sum, tangent, normal), w)
+        }
         _ => Resolved::Missing,
-    }
-}
-
-/// The sum of the handedness whose tangents sum longer, and its `w`.
-#[inline(always)]
-fn longer_side(right: Vec3, left: Vec3) -> (Vec3, f32) {
-    if right.length_squared() >= left.length_squared() {
-        (right, 1.0)
-    } else {
-        (left, -1.0)
     }
 }
 
@@ -106,7 +126,8 @@ pub fn write_measured(
     let mut lanes = ResolvedLanes::new();
     for (batch, sums) in scratch.sums.chunks_mut(LANES).enumerate() {
         let first = scratch.first + batch * LANES;
-        lanes.resolve(mesh, first, sums);
+        let flags = &scratch.flags[batch * LANES..batch * LANES + sums.len()];
+        lanes.resolve(mesh, first, sums, flags);
         for (i, sums) in sums.iter_mut().enumerate() {
             let (v, slot) = (first + i, batch * LANES + i);
             let (normal, resolved) = if lanes.exact[i] != 0 {
@@ -114,15 +135,10 @@ pub fn write_measured(
                     unit: Some(lane3(&lanes.normal, i)),
                     was_unit: lanes.was_unit[i] != 0,
                 };
-                let resolved = if lanes.measured[i] != 0 {
-                    Resolved::Measured(lane3(&lanes.tangent, i), lanes.w[i])
-                } else {
-                    Resolved::Missing
-                };
-                (normal, resolved)
+                (normal, Resolved::Measured(lane3(&lanes.tangent, i), lanes.w[i]))
             } else {
                 let normal = VertexNormal::new(mesh.normals.get(v));
-                (normal, resolve(sums, normal.unit))
+                (normal, resolve(sums, scratch.flags[slot], normal.unit))
             };
             report.abnormal_normals += usize::from(!normal.was_unit);
             match resolved {
@@ -165,16 +181,15 @@ pub fn write_measured(
 /// their common path. Lane flags are `u32` (1 or 0): a byte per lane keeps the loop from
 /// compiling to SIMD.
 struct ResolvedLanes {
-    /// The caller's normals and the vertices' sums, gathered.
+    /// The caller's normals, the sums of the vertices' first sides, and their total weights,
+    /// gathered.
     raw_normal: [Lanes; 3],
-    right: [Lanes; 3],
-    left: [Lanes; 3],
+    sum: [Lanes; 3],
     weight: Lanes,
     /// 1 when the lane took the common path; otherwise the careful one decides.
     exact: [u32; LANES],
     normal: [Lanes; 3],
     was_unit: [u32; LANES],
-    measured: [u32; LANES],
     tangent: [Lanes; 3],
     w: Lanes,
 }
@@ -183,13 +198,11 @@ impl ResolvedLanes {
     fn new() -> Self {
         ResolvedLanes {
             raw_normal: [[0.0; LANES]; 3],
-            right: [[0.0; LANES]; 3],
-            left: [[0.0; LANES]; 3],
+            sum: [[0.0; LANES]; 3],
             weight: [0.0; LANES],
             exact: [0; LANES],
             normal: [[0.0; LANES]; 3],
             was_unit: [0; LANES],
-            measured: [0; LANES],
             tangent: [[0.0; LANES]; 3],
             w: [0.0; LANES],
         }
@@ -197,21 +210,23 @@ impl ResolvedLanes {
 
     /// Vertices `first..first + sums.len()`.
     #[inline(always)]
-    fn resolve(&mut self, mesh: &Mesh, first: usize, sums: &[VertexSums]) {
+    fn resolve(&mut self, mesh: &Mesh, first: usize, sums: &[VertexSums], flags: &[u8]) {
         for (i, sums) in sums.iter().enumerate() {
             set_lane3(&mut self.raw_normal, i, mesh.normals.get(first + i));
-            set_lane3(&mut self.right, i, sums.primary);
-            set_lane3(&mut self.left, i, sums.secondary);
+            let ((first, w), _) = first_side(sums, flags[i]);
+            set_lane3(&mut self.sum, i, first);
+            self.w[i] = w;
             self.weight[i] = sums.weight;
         }
         for i in 0..lanes_in_use(sums.len()) {
             let (length, unit, normal_exact) = length_and_direction_fast(lane3(&self.raw_normal, i));
-            let (sum, w) = longer_side(lane3(&self.right, i), lane3(&self.left, i));
+            let sum = lane3(&self.sum, i);
             let (in_plane, tangent, tangent_exact) = orthonormalize_fast(sum, unit);
-            self.exact[i] = u32::from(normal_exact & tangent_exact);
+            let tangent = finish_tangent(sum, tangent, Some(unit));
+            // A first side too short to measure leaves the other side to the careful path.
+            let measured = in_plane > USABLE_SHARE * self.weight[i];
+            self.exact[i] = u32::from(normal_exact & tangent_exact & measured);
             self.was_unit[i] = u32::from(is_unit_length(length));
-            self.measured[i] = u32::from(in_plane > USABLE_SHARE * self.weight[i]);
-            self.w[i] = w;
             for axis in 0..3 {
                 self.normal[axis][i] = unit[axis];
                 self.tangent[axis][i] = tangent[axis];
