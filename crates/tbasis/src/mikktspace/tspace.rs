@@ -11,7 +11,8 @@
 
 use super::faces::GROUP_WITH_ANY;
 use super::vector::{
-    add, dot, normal, normalize, position, project_normalized, scale, sub, vector_not_zero, Packed, Vec3,
+    add, dot, normal, normalize, position, project_normalized, projected_cosine, scale, sub, vector_not_zero, Packed,
+    Vec3,
 };
 use crate::arc_cosine::acos;
 
@@ -149,19 +150,7 @@ fn corner_angle(attributes: &[Packed], ids: [u32; 3], i: usize, n: Vec3) -> f32 
     let p0 = position(ids[(i + 2) % 3]);
     let p1 = position(ids[i]);
     let p2 = position(ids[(i + 1) % 3]);
-    let v1 = project_normalized(sub(p0, p1), n);
-    let v2 = project_normalized(sub(p2, p1), n);
-    let cos = dot(v1, v2);
-    // mikktspace.c's ternaries, kept as written: `f32::clamp` is not promised to treat `NaN` alike.
-    #[allow(clippy::manual_clamp)]
-    let cos = if cos > 1.0 {
-        1.0
-    } else if cos < -1.0 {
-        -1.0
-    } else {
-        cos
-    };
-    acos(cos)
+    acos(projected_cosine(sub(p0, p1), sub(p2, p1), n))
 }
 
 /// `sum(angle * s)` over `terms` in ascending triangle order, normalized when not zero.

@@ -86,3 +86,19 @@ pub(crate) fn project_normalized(v: Vec3, n: Vec3) -> Vec3 {
         projected
     }
 }
+
+/// The cosine of the angle between `e1` and `e2`, both projected into the tangent plane of `n` and
+/// normalized (`EvalTspace`), clamped to [-1, 1] by mikktspace.c's ternaries: a `NaN` passes
+/// through, where `f32::clamp` is not promised to treat it alike.
+#[inline(always)]
+pub(crate) fn projected_cosine(e1: Vec3, e2: Vec3, n: Vec3) -> f32 {
+    let cos = dot(project_normalized(e1, n), project_normalized(e2, n));
+    #[allow(clippy::manual_clamp)]
+    if cos > 1.0 {
+        1.0
+    } else if cos < -1.0 {
+        -1.0
+    } else {
+        cos
+    }
+}

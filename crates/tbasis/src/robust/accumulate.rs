@@ -294,17 +294,7 @@ impl Corners {
                     mikk::sub(position(next), position(k)),
                 );
                 let tangent = mikk::project_normalized(lane3(&faces.direction, i).to_array(), n);
-                let (v1, v2) = (mikk::project_normalized(e1, n), mikk::project_normalized(e2, n));
-                let cos = mikk::dot(v1, v2);
-                // mikktspace.c's ternaries: a NaN passes through.
-                #[allow(clippy::manual_clamp)]
-                let cos = if cos > 1.0 {
-                    1.0
-                } else if cos < -1.0 {
-                    -1.0
-                } else {
-                    cos
-                };
+                let cos = mikk::projected_cosine(e1, e2, n);
                 let n_squared = mikk::dot(n, n);
                 let usable = (0.998..=1.002).contains(&n_squared) & in_range(e1) & in_range(e2);
                 careful[k][i] = u32::from(!usable);
