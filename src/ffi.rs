@@ -413,8 +413,8 @@ unsafe fn caller_scratch<'a>(
 /// by triangles of both UV orientations), where each corner gets the frame of its own side:
 ///
 /// - a corner gets exactly the bits `tbasis_generate` writes for its vertex;
-/// - except at a mirror fold whose vertex frame was measured (from the side whose tangents sum
-///   longer): there a corner of a non-degenerate triangle on the other side gets the frame of that
+/// - except at a mirror fold whose vertex frame was measured (from one side's sum: its first
+///   corner's side, unless the other sums twice as long): there a corner of a non-degenerate triangle on the other side gets the frame of that
 ///   side's own sum, with that side's `w`, when the sum passes the test the vertex's passed;
 /// - so corners of degenerate triangles, all corners of a fold vertex that inherited its frame or
 ///   fell back, and (policy LEGACY, which has no sides) every corner get their vertex's frame.

@@ -210,8 +210,8 @@ pub(crate) fn resolve_measured(
 /// Method [`Method::Mikktspace`] gives exactly mikktspace.c's frame per corner. The per-vertex
 /// methods give each corner its vertex's frame, except at a mirror fold, where each corner gets the
 /// frame of its own side. Exactly: a corner gets the bits [`generate`] writes for its vertex, except
-/// where that vertex is a mirror fold whose frame was measured (from the side whose tangents sum
-/// longer): there a corner of a non-degenerate triangle on the other side gets the frame of that
+/// where that vertex is a mirror fold whose frame was measured (from one side's sum, see the
+/// README's "Degenerate-UV policies"): there a corner of a non-degenerate triangle on the other side gets the frame of that
 /// side's own sum, with its `w`, when the sum passes the test the vertex's passed. Corners of
 /// degenerate triangles, of fold vertices that inherited or fell back, and all corners under
 /// policy LEGACY get their vertex's frame. Same scratch ([`scratch_size_for`]) and report as

@@ -57,8 +57,8 @@ pub mod flag {
     /// Policy INHERIT: the vertex is queued for the current ring (cleared when the ring ends).
     pub(crate) const CANDIDATE: u8 = 64;
     /// The first non-degenerate corner of the vertex, in triangle order, is left-handed: at a
-    /// mirror fold the vertex takes that side's frame as a rule, as mikktspace.c gives a vertex
-    /// its first corner's (see `robust::resolve`).
+    /// mirror fold the vertex takes that side's frame unless the other side's sum is more than
+    /// twice as long (mikktspace.c gives a vertex its first corner's; see `robust::resolve`).
     pub(crate) const FIRST_LEFT: u8 = 128;
 }
 

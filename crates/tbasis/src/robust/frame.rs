@@ -105,8 +105,9 @@ pub fn is_unit_and_perpendicular(tangent: Vec3, normal: Option<Vec3>, tolerance:
     unit & normal.is_none_or(|n| n.dot(tangent).abs() <= tolerance)
 }
 
-/// A vertex's tangent from its sum: the sum normalized as mikktspace.c normalizes it, where that is
-/// already a unit tangent perpendicular to the normal (ANGLE's terms lie in the tangent plane),
+/// A vertex's tangent from its sum, for every method but LEGACY: the sum normalized as
+/// mikktspace.c normalizes it, where that is already a unit tangent perpendicular to the normal
+/// within a tenth of [`FRAME_TOLERANCE`] (ANGLE's terms lie in the tangent plane of a unit normal),
 /// else `orthonormalized`, the sum after Gram-Schmidt. On a vertex whose terms are all
 /// mikktspace.c's, the result is then mikktspace.c's.
 #[inline(always)]

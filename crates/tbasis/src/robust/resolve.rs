@@ -46,8 +46,9 @@ pub fn resolve(sums: &VertexSums, flags: u8, normal: Option<Vec3>) -> Resolved {
 
 /// The side a vertex takes, its `w`, then the other side's sum: the side of its first
 /// non-degenerate corner (mikktspace.c gives a vertex its first corner's frame), unless the other
-/// side's sum is more than [`MAJORITY`] times as long: then most of the angle around the vertex
-/// lies there, and a sliver flipped in UV (down-weighted by its confidence) does not decide.
+/// side's sum is more than [`MAJORITY`] times as long: then most of the weighted tangent around the
+/// vertex lies there, and one stray triangle flipped in UV (a sliver, often first in the order)
+/// does not decide the vertex's frame.
 #[inline(always)]
 fn first_side(sums: &VertexSums, flags: u8) -> (([f32; 3], f32), [f32; 3]) {
     let (right, left) = (Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
