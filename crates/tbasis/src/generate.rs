@@ -211,8 +211,9 @@ pub(crate) fn resolve_measured(
 /// methods give each corner its vertex's frame, except at a mirror fold, where each corner gets the
 /// frame of its own side. Exactly: a corner gets the bits [`generate`] writes for its vertex, except
 /// where that vertex is a mirror fold whose frame was measured (from one side's sum, see the
-/// README's "Degenerate-UV policies"): there a corner of a non-degenerate triangle on the other side gets the frame of that
-/// side's own sum, with its `w`, when the sum passes the test the vertex's passed. Corners of
+/// README's "Degenerate-UV policies"): there a corner of a non-degenerate triangle on the other
+/// side gets the frame of that side's own sum, with its `w`, when the sum passes the test the
+/// vertex's passed. Corners of
 /// degenerate triangles, of fold vertices that inherited or fell back, and all corners under
 /// policy LEGACY get their vertex's frame. Same scratch ([`scratch_size_for`]) and report as
 /// [`generate`]; `threads` changes no bit. On error nothing in `tangents` has been written.
