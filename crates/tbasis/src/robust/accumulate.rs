@@ -243,8 +243,7 @@ impl Corners {
                     |i| (lane3(&faces.direction, i), faces.length[i]),
                     faces,
                 ),
-                // MIKKTSPACE has its own module and never comes here.
-                // Weighed above.
+                // ANGLE is weighed above; MIKKTSPACE has its own module and never comes here.
                 Method::Angle | Method::Mikktspace => {}
                 Method::Area => self.set(
                     k,

@@ -182,8 +182,8 @@ pub fn write_measured(
 /// their common path. Lane flags are `u32` (1 or 0): a byte per lane keeps the loop from
 /// compiling to SIMD.
 struct ResolvedLanes {
-    /// The caller's normals, the sums of the vertices' first sides, and their total weights,
-    /// gathered.
+    /// The caller's normals, the sums of the sides [`first_side`] picks with their `w`, and the
+    /// total weights, gathered.
     raw_normal: [Lanes; 3],
     sum: [Lanes; 3],
     weight: Lanes,
