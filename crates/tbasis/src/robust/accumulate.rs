@@ -14,7 +14,7 @@ use crate::options::{Method, Options};
 use crate::report::Report;
 use crate::robust::batch::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
 use crate::robust::degenerate::Shape;
-use crate::robust::frame::{length_and_direction, length_and_direction_fast};
+use crate::robust::frame::{is_well_scaled, length_and_direction, length_and_direction_fast};
 use crate::scratch::{flag, Scratch, VertexSums};
 use crate::views::strided::Strided;
 use crate::{parallel, simd};
@@ -118,10 +118,7 @@ impl Faces {
             let squared = mikk::dot(os, os);
             let sign = if signed_area > 0.0 { 1.0 } else { -1.0 };
             let unit_os = mikk::scale(sign / squared.sqrt(), os);
-            let exact = mikk::not_zero(signed_area)
-                & ((signed_area > 0.0) == (det > 0.0))
-                & (squared > 1e-30)
-                & (squared < 1e30);
+            let exact = mikk::not_zero(signed_area) & ((signed_area > 0.0) == (det > 0.0)) & is_well_scaled(squared);
             let direction = if exact { Vec3::from_array(unit_os) } else { direction };
 
             let valid = measurable & uv_shape.at_least(threshold) & position_shape.at_least(threshold);
@@ -279,10 +276,7 @@ impl Corners {
         let mut cosines = [[0.0; LANES]; 3];
         let mut angles = [[0.0; LANES]; 3];
         let mut careful = [[0u32; LANES]; 3];
-        let in_range = |e: mikk::Vec3| {
-            let squared = mikk::dot(e, e);
-            (squared > 1e-30) & (squared < 1e30)
-        };
+        let in_range = |e: mikk::Vec3| is_well_scaled(mikk::dot(e, e));
         for k in 0..3 {
             let (next, previous) = ((k + 1) % 3, (k + 2) % 3);
             for i in 0..lanes {

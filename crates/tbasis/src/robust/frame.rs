@@ -11,6 +11,13 @@ pub fn reject_normal(tangent: Vec3, unit_normal: Vec3) -> Vec3 {
     tangent - unit_normal * unit_normal.dot(tangent)
 }
 
+/// A squared length far enough inside f32's range (1e-30 to 1e30) that squaring, summing and
+/// dividing by the length neither overflow nor lose precision to subnormals.
+#[inline(always)]
+pub fn is_well_scaled(squared: f32) -> bool {
+    (squared > 1e-30) & (squared < 1e30)
+}
+
 /// `(|v|, v / |v|)`, or `None` when `v` is zero or not finite.
 ///
 /// One square root and one division when `|v|^2` is comfortably inside f32's range; otherwise
@@ -31,7 +38,7 @@ pub fn length_and_direction(v: Vec3) -> Option<(f32, Vec3)> {
 pub fn length_and_direction_fast(v: Vec3) -> (f32, Vec3, bool) {
     let squared = v.length_squared();
     let length = squared.sqrt();
-    (length, v * (1.0 / length), (squared > 1e-30) & (squared < 1e30))
+    (length, v * (1.0 / length), is_well_scaled(squared))
 }
 
 #[cold]
@@ -67,7 +74,7 @@ pub fn orthonormalize(tangent: Vec3, normal: Option<Vec3>) -> Option<(f32, Vec3)
         return Some((length, direction));
     }
     let squared = tangent.length_squared();
-    if !(squared > 1e-30 && squared < 1e30) {
+    if !is_well_scaled(squared) {
         // Far from unit scale (a subnormal sum from tiny triangles, or a huge one), the products
         // below would underflow or overflow: work on the direction and scale the length back.
         let (length, direction) = length_and_direction(tangent)?;
@@ -90,7 +97,7 @@ pub fn orthonormalize_fast(tangent: Vec3, n: Vec3) -> (f32, Vec3, bool) {
     let squared = tangent.length_squared();
     let along = n.dot(tangent);
     let (length, direction, in_range) = length_and_direction_fast(tangent - n * along);
-    let exact = (squared > 1e-30 && squared < 1e30) & in_range & (along.abs() <= 8.0 * length);
+    let exact = is_well_scaled(squared) & in_range & (along.abs() <= 8.0 * length);
     (length, direction, exact)
 }
 
