@@ -1,4 +1,5 @@
-//! Runtime choice of the widest vector instructions the CPU has, for the robust path's kernels.
+//! Runtime choice of the widest vector instructions the CPU has, for the robust path's kernels
+//! and MIKKTSPACE's corner terms.
 //!
 //! The kernels are written once, as loops over lanes that LLVM vectorizes (`robust::batch`). A
 //! build for the default x86-64 target may only assume SSE2, four lanes per instruction; here the
@@ -73,7 +74,7 @@ unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
 pub(crate) mod tests {
     use super::Path;
     use crate::thread_count_tests::RandomMesh;
-    use crate::{generate, Mesh, Method, Options, Output};
+    use crate::{generate, generate_corners, Mesh, Method, Options, Output, StridedMut};
 
     std::thread_local! {
         /// The path [`Path::best`] returns on this thread, when set.
@@ -90,7 +91,8 @@ pub(crate) mod tests {
         }
     }
 
-    /// Runs every method and policy of the robust path on `mesh` along each supported path.
+    /// Runs every method and policy of the robust path, and MIKKTSPACE per corner, on `mesh` along
+    /// each supported path.
     fn compare_paths(mesh: &Mesh) {
         let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
             .into_iter()
@@ -101,30 +103,40 @@ pub(crate) mod tests {
             assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
             eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
         }
-        for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
-            for policy in [
-                crate::DegeneratePolicy::Skip,
-                crate::DegeneratePolicy::Inherit,
-                crate::DegeneratePolicy::Legacy,
-            ] {
+        // Every frame's bits and the report, along `path`.
+        let run = |path: Path, options: &Options| {
+            PINNED.with(|p| p.set(Some(path)));
+            let (tangents, report) = if options.method == Method::Mikktspace {
+                let mut tangents = vec![[0.0f32; 4]; mesh.corner_count()];
+                let report = generate_corners(mesh, options, &mut StridedMut::from_slice(&mut tangents[..]));
+                (tangents, report)
+            } else {
+                let mut tangents = vec![[0.0f32; 4]; mesh.vertex_count()];
+                let report = generate(mesh, options, &mut Output::new(&mut tangents[..]));
+                (tangents, report)
+            };
+            PINNED.with(|p| p.set(None));
+            (
+                tangents.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>(),
+                format!("{report:?}"),
+            )
+        };
+        let policies = [
+            crate::DegeneratePolicy::Skip,
+            crate::DegeneratePolicy::Inherit,
+            crate::DegeneratePolicy::Legacy,
+        ];
+        let methods = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform, Method::Mikktspace];
+        for method in methods {
+            for policy in policies {
                 let options = Options::default()
                     .with_method(method)
                     .with_policy(policy)
                     .with_threads(1);
-                let run = |path: Path| {
-                    PINNED.with(|p| p.set(Some(path)));
-                    let mut tangents = vec![[0.0f32; 4]; mesh.vertex_count()];
-                    let report = generate(mesh, &options, &mut Output::new(&mut tangents[..]));
-                    PINNED.with(|p| p.set(None));
-                    (
-                        tangents.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>(),
-                        format!("{report:?}"),
-                    )
-                };
-                let baseline = run(Path::Baseline);
+                let baseline = run(Path::Baseline, &options);
                 for &path in &paths[1..] {
                     assert!(
-                        run(path) == baseline,
+                        run(path, &options) == baseline,
                         "{method:?} {policy:?}: {path:?} differs from the baseline"
                     );
                 }

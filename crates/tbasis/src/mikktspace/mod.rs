@@ -10,6 +10,7 @@
 
 mod arena;
 mod attributes;
+mod corner_terms;
 mod faces;
 mod groups;
 mod neighbors;
@@ -25,10 +26,11 @@ use glam::Vec3 as GlamVec3;
 
 use self::arena::{bytes_of, Arena};
 use self::attributes::Attributes;
+use self::corner_terms::CornerTerms;
 use self::faces::GROUP_WITH_ANY;
 use self::groups::Groups;
 use self::neighbors::EdgeScratch;
-use self::tspace::{Inputs, MemberTerms};
+use self::tspace::Inputs;
 use self::vector::{Packed, Vec3};
 use self::weld::WeldScratch;
 use crate::error::Error;
@@ -113,30 +115,41 @@ fn edge_scratch<'a>(arena: &mut Arena<'a>, corner_count: usize) -> Result<EdgeSc
     })
 }
 
-/// Grouping's and evaluation's arrays: the groups, the search stack, and the terms of a group's
-/// members (room for the largest group).
-type GroupScratch<'a> = (Groups<'a>, &'a mut [u32], MemberTerms<'a>);
-
-/// Takes [`GroupScratch`] for `triangles` good triangles.
-fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScratch<'a>, Error> {
+/// Grouping's and evaluation's memory: one region that holds grouping's search stack, then the
+/// corner terms, followed by the groups.
+///
+/// Laid out so that its pages are ones the weld has already touched (the terms and the groups'
+/// members from the start; the rest of the groups' arrays are touched only as far as there are
+/// groups): first use of memory costs a page fault, a large part of a call's time.
+fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<(&'a mut [u8], Groups<'a>), Error> {
+    let region = bytes_of(|a| group_stack(a, triangles))?.max(bytes_of(|a| corner_terms(a, triangles))?);
+    let region = arena.take(region)?;
     let groups = Groups {
-        starts: arena.take(3 * triangles + 1)?,
         faces: arena.take(3 * triangles)?,
+        starts: arena.take(3 * triangles + 1)?,
         vertex: arena.take(3 * triangles)?,
         orientation: arena.take(3 * triangles)?,
     };
-    let stack = arena.take(6 * triangles + 2)?;
-    let terms = MemberTerms {
-        corner: arena.take(triangles)?,
-        s: arena.take(triangles)?,
-        t: arena.take(triangles)?,
-        angle: arena.take(triangles)?,
-    };
-    Ok((groups, stack, terms))
+    Ok((region, groups))
+}
+
+/// Grouping's search stack.
+fn group_stack<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<&'a mut [u32], Error> {
+    arena.take(6 * triangles + 2)
+}
+
+/// The terms of every corner of `triangles` good triangles.
+fn corner_terms<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<CornerTerms<'a>, Error> {
+    Ok(CornerTerms {
+        s: arena.take(3 * triangles)?,
+        t: arena.take(3 * triangles)?,
+        angle: arena.take(3 * triangles)?,
+    })
 }
 
 /// Bytes of working memory a call needs; `None` on overflow. The layout's sum, which the header
-/// states as `97 C + 65 T + 12 V + 4 max(2 V + 2, C) + 16454` (checked by a test).
+/// states as `57 C + 65 T + 4 V + 4 max(2 V + 2, C) + max(40 C + 8 V + 16415, 41 C + 22) + 39`
+/// (checked by a test).
 pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
     if vertex_count == 0 {
         // Every index is out of range, or there are none: nothing to work on.
@@ -353,33 +366,43 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
     // 9. Orientation-preserving groups around each welded vertex (Build4RuleGroups).
     let mut phase = Arena::Carve(&mut *b.phase);
-    let (mut groups, stack, terms) = group_scratch(&mut phase, triangles)?;
+    let (region, mut groups) = group_scratch(&mut phase, triangles)?;
     let group_count = groups::build(
         ids,
         &b.neighbors[..good],
         &mut b.flags[..good],
         &mut b.assigned[..good],
         &mut groups,
-        stack,
+        group_stack(&mut Arena::Carve(&mut *region), triangles)?,
     );
 
-    // 10. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace),
-    //     on ranges of groups of about as many members each (a vertex's triangles can lie far
-    //     apart in the triangle order): a worker sorts its groups' triangles, evaluates the
-    //     groups, and writes the corners in its range of good triangles, the others (spilled)
-    //     once every worker is done.
-    let starts = &groups.starts[..group_count + 1];
-    let largest = starts.windows(2).map(|w| (w[1] - w[0]) as usize).max().unwrap_or(0);
-    let inputs = Inputs {
-        attributes: packed,
-        ids,
-        tangent_s: &b.tangent_s[..good],
-        tangent_t: &b.tangent_t[..good],
-        flags: &b.flags[..good],
-        order,
-    };
+    // 10. What each corner weighs (EvalTspace's projections and corner angle), on ranges of good
+    //     triangles; then each group's sub-groups and their angle-weighted tangents
+    //     (GenerateTSpaces, EvalTspace), on ranges of groups of about as many members each (a
+    //     vertex's triangles can lie far apart in the triangle order): a worker sorts its groups'
+    //     triangles, evaluates the groups, and writes the corners in its range of good triangles,
+    //     the others (spilled) once every worker is done.
+    let terms = corner_terms(&mut Arena::Carve(region), good)?;
     let ranges = threads::ranges(threads, good);
     let ends = ranges.ends();
+    let parts = threads::split(&mut *terms.s, ends, 3)
+        .zip(threads::split(&mut *terms.t, ends, 3))
+        .zip(threads::split(&mut *terms.angle, ends, 3));
+    let derivatives = [&b.tangent_s[..good], &b.tangent_t[..good]];
+    threads::run(ends, parts, |first, ((s, t), angle)| {
+        let range = first..first + angle.len() / 3;
+        let derivatives = derivatives.map(|d| &d[range.clone()]);
+        corner_terms::compute(packed, &ids[range], derivatives, CornerTerms { s, t, angle });
+    });
+    let inputs = Inputs {
+        ids,
+        flags: &b.flags[..good],
+        order,
+        s: terms.s,
+        t: terms.t,
+        angle: terms.angle,
+    };
+    let starts = &groups.starts[..group_count + 1];
     // Each range's per-corner arrays begin with the triangle of its first good triangle.
     let triangle_ranges =
         threads::Ranges::from_ends(
@@ -395,7 +418,6 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let member_ends = threads::Ranges::from_ends(group_ends.iter().map(|&g| starts[g] as usize));
     let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
     let first_groups = core::iter::once(0).chain(group_ends.iter().copied());
-    let mut first_terms = Some(terms);
     // Empty until a range spills: one range allocates nothing.
     let mut spilled: [Vec<tspace::Spilled>; threads::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
     let parts = threads::split(&mut *b.tangents, triangle_ends, 3)
@@ -403,10 +425,9 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         .zip(threads::split(&mut *groups.faces, member_ends.ends(), 1))
         .zip(first_triangles.zip(ends.iter()))
         .zip(first_groups.zip(group_ends.iter()))
-        .zip(spilled.iter_mut())
-        .map(move |parts| (parts, first_terms.take()));
+        .zip(spilled.iter_mut());
     let (vertices, orientations) = (&*groups.vertex, &*groups.orientation);
-    threads::run(ends, parts, |first, (parts, terms)| {
+    threads::run(ends, parts, |first, parts| {
         let (((((tangents, orientation), faces), (first_triangle, &end)), (first_group, &end_group)), spilled) = parts;
         let mut out = tspace::Written {
             tangents,
@@ -416,17 +437,11 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             spilled,
         };
         let base = starts[first_group] as usize;
-        let mut evaluate = |terms: &mut MemberTerms| {
-            for group in first_group..end_group {
-                let members = &mut faces[starts[group] as usize - base..starts[group + 1] as usize - base];
-                members.sort_unstable();
-                let preserving = orientations[group] != 0;
-                tspace::evaluate_group(&inputs, members, vertices[group], preserving, terms, &mut out);
-            }
-        };
-        match terms {
-            Some(mut terms) => evaluate(&mut terms),
-            None => MemberTerms::with_owned(largest, evaluate),
+        for group in first_group..end_group {
+            let members = &mut faces[starts[group] as usize - base..starts[group + 1] as usize - base];
+            members.sort_unstable();
+            let preserving = orientations[group] != 0;
+            tspace::evaluate_group(&inputs, members, vertices[group], preserving, &mut out);
         }
     });
 
@@ -519,9 +534,21 @@ mod tests {
 
     #[test]
     fn scratch_bytes_follow_the_documented_formula() {
-        for (v, c) in [(1, 3), (3, 3), (4, 6), (100, 30), (10, 300), (1000, 5994), (7, 0)] {
+        // The last two: the weld's memory is the largest phase's, then the groups' and terms'.
+        for (v, c) in [
+            (1, 3),
+            (3, 3),
+            (4, 6),
+            (100, 30),
+            (10, 300),
+            (1000, 5994),
+            (7, 0),
+            (2, 16395),
+            (2, 16500),
+        ] {
             let t = c / 3;
-            let formula = 97 * c + 65 * t + 12 * v + 4 * (2 * v + 2).max(c) + 16454;
+            let phase = (40 * c + 8 * v + 16415).max(41 * c + 22);
+            let formula = 57 * c + 65 * t + 4 * v + 4 * (2 * v + 2).max(c) + phase + 39;
             assert_eq!(scratch_bytes(v, c), Some(formula), "{v} vertices, {c} corners");
         }
         assert_eq!(scratch_bytes(0, 0), Some(0));

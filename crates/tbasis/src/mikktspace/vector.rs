@@ -79,11 +79,17 @@ pub(crate) fn normalize(v: Vec3) -> Vec3 {
 /// `v - (n . v) n`, the projection every tangent and edge goes through before it is weighed.
 #[inline(always)]
 pub(crate) fn project_normalized(v: Vec3, n: Vec3) -> Vec3 {
-    let projected = sub(v, scale(dot(n, v), n));
-    if vector_not_zero(projected) {
-        normalize(projected)
+    normalize_if_not_zero(sub(v, scale(dot(n, v), n)))
+}
+
+/// `v` normalized unless [`vector_not_zero`] says it is zero, as mikktspace.c guards each
+/// `Normalize`.
+#[inline(always)]
+pub(crate) fn normalize_if_not_zero(v: Vec3) -> Vec3 {
+    if vector_not_zero(v) {
+        normalize(v)
     } else {
-        projected
+        v
     }
 }
 

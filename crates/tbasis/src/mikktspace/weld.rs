@@ -38,11 +38,12 @@ pub(crate) struct WeldScratch<'a> {
     /// [`UNEQUAL`], representative corner).
     positions: &'a mut [Vec3],
     entries: &'a mut [[u32; 3]],
-    /// Pending parts of a cell, as (first, last) entry.
-    stack: &'a mut [[u32; 2]],
     /// Per corner: its representative, then per representative its welded number.
     representative: &'a mut [u32],
     number: &'a mut [u32],
+    /// Pending parts of a cell, as (first, last) entry: last, as little of it is used (the
+    /// phases after the weld find the pages before it already touched).
+    stack: &'a mut [[u32; 2]],
 }
 
 impl<'a> WeldScratch<'a> {
@@ -55,9 +56,9 @@ impl<'a> WeldScratch<'a> {
             cursors: arena.take(GRID_CELLS)?,
             positions: arena.take(corner_count)?,
             entries: arena.take(corner_count)?,
-            stack: arena.take(corner_count)?,
             representative: arena.take(corner_count)?,
             number: arena.take(corner_count)?,
+            stack: arena.take(corner_count)?,
         })
     }
 }

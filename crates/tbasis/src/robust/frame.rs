@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 
-use crate::mikktspace::vector::{normalize, vector_not_zero};
+use crate::mikktspace::vector::normalize_if_not_zero;
 
 /// Removes the normal's component: `T' = T - (N . T) N` (Lengyel 2001, Gram-Schmidt step).
 #[inline(always)]
@@ -119,8 +119,7 @@ pub fn is_unit_and_perpendicular(tangent: Vec3, normal: Option<Vec3>, tolerance:
 /// mikktspace.c's, the result is then mikktspace.c's.
 #[inline(always)]
 pub fn finish_tangent(sum: Vec3, orthonormalized: Vec3, normal: Option<Vec3>) -> Vec3 {
-    let sum = sum.to_array();
-    let normalized = Vec3::from_array(if vector_not_zero(sum) { normalize(sum) } else { sum });
+    let normalized = Vec3::from_array(normalize_if_not_zero(sum.to_array()));
     // A tenth of the promised tolerance: the test itself rounds in f32.
     if is_unit_and_perpendicular(normalized, normal, 0.1 * FRAME_TOLERANCE) {
         normalized
