@@ -126,7 +126,13 @@ pub(crate) mod tests {
             crate::DegeneratePolicy::Inherit,
             crate::DegeneratePolicy::Legacy,
         ];
-        let methods = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform, Method::Mikktspace];
+        let methods = [
+            Method::Lengyel,
+            Method::Angle,
+            Method::Area,
+            Method::Uniform,
+            Method::Mikktspace,
+        ];
         for method in methods {
             for policy in policies {
                 let options = Options::default()
