@@ -73,8 +73,8 @@ unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::Path;
-    use crate::thread_count_tests::RandomMesh;
-    use crate::{generate, generate_corners, Mesh, Method, Options, Output, StridedMut};
+    use crate::thread_count_tests::{run, RandomMesh};
+    use crate::{DegeneratePolicy, Method, Options};
 
     std::thread_local! {
         /// The path [`Path::best`] returns on this thread, when set.
@@ -82,18 +82,10 @@ pub(crate) mod tests {
     }
 
     /// On random meshes with mirror folds, collapsed and quantised UVs, zero and NaN normals, long
-    /// triangles (`thread_count_tests`), indexed and not.
+    /// triangles (`thread_count_tests`), indexed and not: every method and policy, per vertex and
+    /// per corner.
     #[test]
     fn every_supported_path_gives_the_same_bits() {
-        for (vertex_count, seed, indexed) in [(3000, 11, true), (5000, 12, true), (1000, 13, false)] {
-            let random = RandomMesh::new(vertex_count, seed, indexed);
-            compare_paths(&random.mesh());
-        }
-    }
-
-    /// Runs every method and policy of the robust path, and MIKKTSPACE per corner, on `mesh` along
-    /// each supported path.
-    fn compare_paths(mesh: &Mesh) {
         let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
             .into_iter()
             .filter(|p| p.supported())
@@ -103,29 +95,6 @@ pub(crate) mod tests {
             assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
             eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
         }
-        // Every frame's bits and the report, along `path`.
-        let run = |path: Path, options: &Options| {
-            PINNED.with(|p| p.set(Some(path)));
-            let (tangents, report) = if options.method == Method::Mikktspace {
-                let mut tangents = vec![[0.0f32; 4]; mesh.corner_count()];
-                let report = generate_corners(mesh, options, &mut StridedMut::from_slice(&mut tangents[..]));
-                (tangents, report)
-            } else {
-                let mut tangents = vec![[0.0f32; 4]; mesh.vertex_count()];
-                let report = generate(mesh, options, &mut Output::new(&mut tangents[..]));
-                (tangents, report)
-            };
-            PINNED.with(|p| p.set(None));
-            (
-                tangents.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>(),
-                format!("{report:?}"),
-            )
-        };
-        let policies = [
-            crate::DegeneratePolicy::Skip,
-            crate::DegeneratePolicy::Inherit,
-            crate::DegeneratePolicy::Legacy,
-        ];
         let methods = [
             Method::Lengyel,
             Method::Angle,
@@ -133,16 +102,28 @@ pub(crate) mod tests {
             Method::Uniform,
             Method::Mikktspace,
         ];
-        for method in methods {
-            for policy in policies {
+        let policies = [
+            DegeneratePolicy::Skip,
+            DegeneratePolicy::Inherit,
+            DegeneratePolicy::Legacy,
+        ];
+        for (vertex_count, seed, indexed) in [(3000, 11, true), (5000, 12, true), (1000, 13, false)] {
+            let mesh = RandomMesh::new(vertex_count, seed, indexed);
+            for (method, policy) in methods.into_iter().flat_map(|m| policies.map(|p| (m, p))) {
                 let options = Options::default()
                     .with_method(method)
                     .with_policy(policy)
                     .with_threads(1);
-                let baseline = run(Path::Baseline, &options);
+                let along = |path: Path| {
+                    PINNED.with(|p| p.set(Some(path)));
+                    let outcome = run(&mesh, &options);
+                    PINNED.with(|p| p.set(None));
+                    outcome
+                };
+                let baseline = along(Path::Baseline);
                 for &path in &paths[1..] {
                     assert!(
-                        run(path, &options) == baseline,
+                        along(path) == baseline,
                         "{method:?} {policy:?}: {path:?} differs from the baseline"
                     );
                 }

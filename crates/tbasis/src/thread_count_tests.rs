@@ -127,14 +127,15 @@ impl RandomMesh {
 
 /// Everything a call gives back, as bits.
 #[derive(Debug, PartialEq)]
-struct Outcome {
+pub(crate) struct Outcome {
     result: Result<Report, Error>,
     vertex_bits: Vec<u32>,
     corner_result: Result<Report, Error>,
     corner_bits: Vec<u32>,
 }
 
-fn run(mesh: &RandomMesh, options: &Options) -> Outcome {
+/// `generate` and `generate_corners` on `mesh`.
+pub(crate) fn run(mesh: &RandomMesh, options: &Options) -> Outcome {
     let mesh_view = mesh.mesh();
     let mut tangents = vec![[0.0f32; 4]; mesh.positions.len()];
     let mut bitangents = vec![[0.0f32; 3]; mesh.positions.len()];
