@@ -73,8 +73,8 @@ unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::Path;
-    use crate::thread_count_tests::{run, RandomMesh};
-    use crate::{DegeneratePolicy, Method, Options};
+    use crate::thread_count_tests::{run, RandomMesh, METHODS};
+    use crate::{DegeneratePolicy, Options};
 
     std::thread_local! {
         /// The path [`Path::best`] returns on this thread, when set.
@@ -95,13 +95,6 @@ pub(crate) mod tests {
             assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
             eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
         }
-        let methods = [
-            Method::Lengyel,
-            Method::Angle,
-            Method::Area,
-            Method::Uniform,
-            Method::Mikktspace,
-        ];
         let policies = [
             DegeneratePolicy::Skip,
             DegeneratePolicy::Inherit,
@@ -109,7 +102,7 @@ pub(crate) mod tests {
         ];
         for (vertex_count, seed, indexed) in [(3000, 11, true), (5000, 12, true), (1000, 13, false)] {
             let mesh = RandomMesh::new(vertex_count, seed, indexed);
-            for (method, policy) in methods.into_iter().flat_map(|m| policies.map(|p| (m, p))) {
+            for (method, policy) in METHODS.into_iter().flat_map(|m| policies.map(|p| (m, p))) {
                 let options = Options::default()
                     .with_method(method)
                     .with_policy(policy)

@@ -125,6 +125,15 @@ impl RandomMesh {
     }
 }
 
+/// Every method.
+pub(crate) const METHODS: [Method; 5] = [
+    Method::Lengyel,
+    Method::Angle,
+    Method::Area,
+    Method::Uniform,
+    Method::Mikktspace,
+];
+
 /// Everything a call gives back, as bits.
 #[derive(Debug, PartialEq)]
 pub(crate) struct Outcome {
@@ -177,14 +186,13 @@ proptest! {
     ) {
         let mesh = RandomMesh::new(vertex_count, seed, indexed);
         let mesh = if shuffled { mesh.shuffled(seed) } else { mesh };
-        let methods = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform, Method::Mikktspace];
         let policies = [
             DegeneratePolicy::Legacy,
             DegeneratePolicy::Skip,
             DegeneratePolicy::Inherit,
             DegeneratePolicy::Reject,
         ];
-        for method in methods {
+        for method in METHODS {
             for policy in policies {
                 let options = Options { method, degenerate_policy: policy, ..Options::default() };
                 let one = run(&mesh, &Options { threads: 1, ..options });

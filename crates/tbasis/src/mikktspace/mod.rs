@@ -390,7 +390,6 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     //     apart in the triangle order): a worker sorts its groups' triangles, evaluates the
     //     groups, and writes the corners in its range of good triangles, the others (spilled)
     //     once every worker is done.
-    let ranges = threads::ranges(threads, good);
     let ends = ranges.ends();
     let inputs = Inputs {
         ids,
