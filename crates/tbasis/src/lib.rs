@@ -93,6 +93,7 @@ pub use interleaved::{generate_interleaved, VertexLayout};
 pub use mesh::{Indices, Mesh, Output};
 pub use options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
 pub use report::Report;
+pub use robust::resolve::fallback_frame;
 pub use reusable::ScratchBuffer;
 pub use seam_split::{copy_split_vertices, split_corners, SeamSplit};
 pub use transform::{from_tangent_space, to_tangent_space};

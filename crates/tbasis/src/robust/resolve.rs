@@ -95,6 +95,21 @@ pub fn fallback(normal: Option<Vec3>) -> (Vec3, f32) {
     (normal.map_or(NO_NORMAL_TANGENT, fallback_tangent), 1.0)
 }
 
+/// The frame the robust policies give a vertex no triangle gives a usable tangent: a unit tangent
+/// perpendicular to `normal` built from the normal alone (Duff et al. 2017), or the x axis when
+/// the normal is zero or not finite, with `w = 1`. For tools that fill frames of their own.
+///
+/// ```
+/// let [x, y, z, w] = tbasis::fallback_frame([0.0, 0.0, 2.0]);
+/// assert_eq!(([x, y, z], w), ([1.0, 0.0, 0.0], 1.0));
+/// assert_eq!(tbasis::fallback_frame([0.0; 3]), [1.0, 0.0, 0.0, 1.0]);
+/// ```
+pub fn fallback_frame(normal: [f32; 3]) -> [f32; 4] {
+    let (tangent, w) = fallback(VertexNormal::new(normal).unit);
+    let [x, y, z] = tangent.to_array();
+    [x, y, z, w]
+}
+
 /// Number of vertices whose normal is not unit length within 1e-3 (zero and non-finite included).
 pub fn count_abnormal_normals(mesh: &Mesh) -> usize {
     (0..mesh.vertex_count())
