@@ -17,7 +17,7 @@ int check(int ok, const char *format, ...)
     ;
 
 /* The highest status value the header defines. */
-#define LAST_STATUS TBASIS_ERROR_TOO_MANY_VERTICES
+#define LAST_STATUS TBASIS_ERROR_NO_LEGACY_FORM
 
 /* Which statuses some check has seen returned on purpose (main checks that each error was). */
 extern int provoked[LAST_STATUS + 1];

@@ -233,6 +233,10 @@ typedef struct tbasis_report {
 // `tbasis_split_corners`: the mesh would need more than 2^32 vertices, beyond 32-bit indices.
 #define TBASIS_ERROR_TOO_MANY_VERTICES 18
 
+// `options->degenerate_policy` is LEGACY with a method that has no legacy form: LEGACY reproduces
+// the listing (method LENGYEL) or mikktspace.c (method MIKKTSPACE), and nothing else.
+#define TBASIS_ERROR_NO_LEGACY_FORM 19
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus

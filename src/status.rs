@@ -50,6 +50,9 @@ pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
 pub const TBASIS_ERROR_INVALID_FRAME: tbasis_status = 17;
 /// `tbasis_split_corners`: the mesh would need more than 2^32 vertices, beyond 32-bit indices.
 pub const TBASIS_ERROR_TOO_MANY_VERTICES: tbasis_status = 18;
+/// `options->degenerate_policy` is LEGACY with a method that has no legacy form: LEGACY reproduces
+/// the listing (method LENGYEL) or mikktspace.c (method MIKKTSPACE), and nothing else.
+pub const TBASIS_ERROR_NO_LEGACY_FORM: tbasis_status = 19;
 
 /// Why a C call failed: an error of the crate, or one only a C caller can make.
 #[derive(Debug)]
@@ -95,6 +98,7 @@ pub(crate) fn status_of(kind: ErrorKind) -> tbasis_status {
         ErrorKind::InvalidThreshold => TBASIS_ERROR_INVALID_THRESHOLD,
         ErrorKind::InvalidFrame => TBASIS_ERROR_INVALID_FRAME,
         ErrorKind::TooManyVertices => TBASIS_ERROR_TOO_MANY_VERTICES,
+        ErrorKind::NoLegacyForm => TBASIS_ERROR_NO_LEGACY_FORM,
         _ => TBASIS_ERROR_INTERNAL,
     }
 }
@@ -123,6 +127,9 @@ pub(crate) fn message_nul(status: tbasis_status) -> Option<&'static str> {
         TBASIS_ERROR_INTERNAL => "internal error\0",
         TBASIS_ERROR_INVALID_FRAME => "the tangent frame is singular, or an input or the result is not finite\0",
         TBASIS_ERROR_TOO_MANY_VERTICES => "the split mesh would need vertex indices beyond 32 bits\0",
+        TBASIS_ERROR_NO_LEGACY_FORM => {
+            "policy LEGACY needs method LENGYEL (the listing) or MIKKTSPACE (mikktspace.c)\0"
+        }
         _ => return None,
     })
 }

@@ -58,44 +58,23 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
-mod arc_cosine;
-mod error;
-mod generate;
-mod interleaved;
-mod legacy;
-mod mesh;
-mod mikktspace;
-mod options;
-mod parallel;
-mod report;
-mod reusable;
-mod robust;
-mod scratch;
-mod seam_split;
-#[allow(unsafe_code)]
-mod simd;
-#[cfg(test)]
-mod test_rng;
-#[cfg(test)]
-mod thread_count_tests;
-mod transform;
-mod validate;
-mod vertex_corners;
-#[allow(unsafe_code)]
-mod views;
+mod entry;
+mod kernel;
+mod pipelines;
 
-pub use error::{Buffer, Error, ErrorKind};
-pub use generate::{
+pub use entry::generate::{
     generate, generate_corners, generate_corners_with_scratch, generate_with_scratch, scratch_size, scratch_size_for,
     scratch_size_for_counts,
 };
-pub use interleaved::{generate_interleaved, VertexLayout};
-pub use mesh::{Indices, Mesh, Output};
-pub use options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
-pub use report::Report;
-pub use robust::resolve::fallback_frame;
-pub use reusable::ScratchBuffer;
-pub use seam_split::{copy_split_vertices, split_corners, SeamSplit};
-pub use transform::{from_tangent_space, to_tangent_space};
-pub use validate::check_written;
-pub use views::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
+pub use entry::interleaved::generate_interleaved;
+pub use entry::reusable::ScratchBuffer;
+pub use entry::seam_split::{copy_split_vertices, split_corners, SeamSplit};
+pub use entry::transform::{from_tangent_space, to_tangent_space};
+pub use entry::validate::check_written;
+pub use kernel::error::{Buffer, Error, ErrorKind};
+pub use kernel::frame::fallback_frame;
+pub use kernel::mesh::{Indices, Mesh, Output};
+pub use kernel::options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_THRESHOLD};
+pub use kernel::report::Report;
+pub use kernel::views::interleaved::VertexLayout;
+pub use kernel::views::strided::{span_bytes, Element, Footprint, Strided, StridedMut};

@@ -136,6 +136,7 @@ _BY_STATUS: dict[int, type[Error]] = {
     14: InvalidOptionError,  # INVALID_THRESHOLD
     15: InvalidLayoutError,  # INVALID_COUNT
     18: TooManyVerticesError,
+    19: InvalidOptionError,  # NO_LEGACY_FORM
 }
 # NULL_POINTER: the C library's status for missing texcoords, which the binding gives too.
 _NULL_POINTER = 1

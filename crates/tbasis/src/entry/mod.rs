@@ -1,0 +1,10 @@
+//! The public entry points: each validates the call, then hands it to one pipeline.
+
+#[cfg(test)]
+mod determinism_tests;
+pub(crate) mod generate;
+pub(crate) mod interleaved;
+pub(crate) mod reusable;
+pub(crate) mod seam_split;
+pub(crate) mod transform;
+pub(crate) mod validate;

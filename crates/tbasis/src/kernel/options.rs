@@ -1,0 +1,349 @@
+//! What the caller can choose: the method, the degenerate-UV policy, flags and threshold.
+#![forbid(unsafe_code)]
+
+use crate::kernel::error::Error;
+
+/// How per-triangle tangents are combined at a vertex.
+///
+/// ```
+/// use tbasis::{generate, Mesh, Method, Options, Output};
+///
+/// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+/// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+/// # let texcoords = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+/// let mesh = Mesh::new(&positions, &normals).with_texcoords(&texcoords);
+/// for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform, Method::Mikktspace] {
+///     let mut tangents = [[0.0f32; 4]; 3];
+///     generate(&mesh, &Options::default().with_method(method), &mut Output::new(&mut tangents))?;
+///     assert_eq!(tangents[0], [1.0, 0.0, 0.0, 1.0], "{method:?}");
+/// }
+/// # Ok::<(), tbasis::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Method {
+    /// The original listing: each triangle adds its unnormalized dP/du and dP/dv (Lengyel 2001).
+    Lengyel,
+    /// Each triangle's tangent, projected into the vertex's tangent plane and normalized, weighted
+    /// by the triangle's corner angle at the vertex measured in that plane, each term in
+    /// mikktspace.c's arithmetic (`EvalTspace`), with or without [`Options::flip_v`]. So on a clean
+    /// mesh a vertex gets exactly mikktspace.c's frame for its first corner: its triangles one
+    /// edge-connected fan, none degenerate or nearly so (UV shape quality at least 0.01), its
+    /// normal unit length to float precision and facing along their winding, no other vertex with
+    /// the same position, normal and texture coordinate, and at a mirror fold no side summing more
+    /// than twice as long as its first corner's (README, "Methods"). Elsewhere the scale-free
+    /// robust arithmetic and the vertex's own sums decide.
+    Angle,
+    /// Unit face tangents weighted by triangle area.
+    Area,
+    /// Unit face tangents with equal weights (per-face averaging).
+    Uniform,
+    /// Exactly what mikktspace.c's `genTangSpaceDefault` gives, float for float, per corner: the
+    /// tangents almost every normal map is baked against. Its default policy is `Legacy`.
+    Mikktspace,
+}
+
+impl Method {
+    /// The method used when the caller asks for the default (`0` in C): ANGLE, which gives
+    /// mikktspace.c's per-vertex frames bit for bit on 33 of the 35 analytic scenes of
+    /// `docs/accuracy.md` (on the other two, with noisy texture coordinates, 4 vertices of 10,396
+    /// differ and the default's mean error is the lower), and
+    /// whose mean error is about half the listing's.
+    ///
+    /// ```
+    /// use tbasis::{Method, Options};
+    ///
+    /// assert_eq!(Method::DEFAULT, Method::Angle);
+    /// assert_eq!(Options::default().method, Method::DEFAULT);
+    /// ```
+    pub const DEFAULT: Method = Method::Angle;
+}
+
+/// What happens to triangles whose texture coordinates (or inputs) are degenerate.
+///
+/// ```
+/// use tbasis::{generate, DegeneratePolicy, Error, Mesh, Options, Output};
+///
+/// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+/// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+/// let collapsed = [[0.5, 0.5f32]; 3]; // every corner at the same UV
+/// let mesh = Mesh::new(&positions, &normals).with_texcoords(&collapsed);
+/// let mut tangents = [[0.0f32; 4]; 3];
+/// let skip = Options::default().with_policy(DegeneratePolicy::Skip);
+/// let report = generate(&mesh, &skip, &mut Output::new(&mut tangents))?;
+/// assert_eq!(report.fallback_vertices, 3);
+///
+/// let reject = Options::default().with_policy(DegeneratePolicy::Reject);
+/// let error = generate(&mesh, &reject, &mut Output::new(&mut tangents)).unwrap_err();
+/// assert!(matches!(error, Error::DegenerateUv { triangle: 0, .. }));
+/// # Ok::<(), tbasis::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum DegeneratePolicy {
+    /// Exactly the listing (method LENGYEL) or mikktspace.c (method MIKKTSPACE), bit for bit,
+    /// including the inf/NaN the listing writes on a zero UV determinant. The other methods have
+    /// no legacy form: with them this policy is refused ([`Error::NoLegacyForm`]).
+    Legacy,
+    /// Degenerate triangles contribute nothing; a vertex left without a tangent gets a fallback
+    /// frame built from its normal.
+    Skip,
+    /// Like `Skip`, but a vertex left without a tangent first takes one from its neighbours across
+    /// shared triangles, and falls back only when its whole connected region has none.
+    Inherit,
+    /// Refuse the mesh with [`Error::DegenerateUv`], naming the first degenerate triangle.
+    Reject,
+}
+
+impl DegeneratePolicy {
+    /// The policy used when the caller asks for the default (`0` in C).
+    ///
+    /// ```
+    /// use tbasis::{DegeneratePolicy, Options};
+    ///
+    /// assert_eq!(DegeneratePolicy::DEFAULT, DegeneratePolicy::Inherit);
+    /// assert_eq!(Options::default().degenerate_policy, DegeneratePolicy::DEFAULT);
+    /// ```
+    pub const DEFAULT: DegeneratePolicy = DegeneratePolicy::Inherit;
+
+    /// The policy `0` stands for with `method`: `Legacy` for [`Method::Mikktspace`] (exactly
+    /// mikktspace.c), [`DegeneratePolicy::DEFAULT`] for the others.
+    ///
+    /// ```
+    /// use tbasis::{DegeneratePolicy, Method};
+    ///
+    /// assert_eq!(DegeneratePolicy::default_for(Method::Mikktspace), DegeneratePolicy::Legacy);
+    /// assert_eq!(DegeneratePolicy::default_for(Method::Area), DegeneratePolicy::DEFAULT);
+    /// ```
+    pub fn default_for(method: Method) -> DegeneratePolicy {
+        match method {
+            Method::Mikktspace => DegeneratePolicy::Legacy,
+            _ => DegeneratePolicy::DEFAULT,
+        }
+    }
+}
+
+/// The default for [`Options::degenerate_threshold`].
+///
+/// A triangle's UV quality `q = 2*sqrt(3)*|det| / (|e0|^2 + |e1|^2 + |e2|^2)` is 1 for an
+/// equilateral triangle, about 0.87 for a grid's right triangle, and falls like `sqrt(3)/k` for a
+/// sliver of aspect ratio `k`. Below 1e-5 (aspect ratios beyond ~170 000:1) the UV edges that define
+/// the tangent differ by less than a float's relative precision of the coordinates they come from,
+/// so the solved tangent is rounding noise.
+///
+/// ```
+/// use tbasis::{generate, Mesh, Options, Output, DEFAULT_DEGENERATE_THRESHOLD};
+///
+/// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+/// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+/// // A sliver in UV space, of quality q = 2*sqrt(3) * 1e-6 / 1.5, about 2.3e-6.
+/// let sliver = [[0.0, 0.0], [1.0, 0.0], [0.5, 1e-6]];
+/// let mesh = Mesh::new(&positions, &normals).with_texcoords(&sliver);
+/// let mut tangents = [[0.0f32; 4]; 3];
+/// let options = Options::default();
+/// assert_eq!(options.degenerate_threshold, DEFAULT_DEGENERATE_THRESHOLD);
+/// assert_eq!(generate(&mesh, &options, &mut Output::new(&mut tangents))?.degenerate_triangles, 1);
+/// # Ok::<(), tbasis::Error>(())
+/// ```
+pub const DEFAULT_DEGENERATE_THRESHOLD: f32 = 1e-5;
+
+/// Everything a call can be told besides the mesh and the output: [`Options::default`], then the
+/// `with_*` builders.
+///
+/// ```
+/// use tbasis::{DegeneratePolicy, Method, Options};
+/// let options = Options::default().with_method(Method::Area).with_policy(DegeneratePolicy::Skip).with_threads(4);
+/// assert_eq!(options.method, Method::Area);
+/// assert_eq!(Options::mikktspace().with_flip_v(true).degenerate_policy, DegeneratePolicy::Legacy);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Options {
+    /// How per-triangle tangents are combined.
+    pub method: Method,
+    /// What happens to degenerate triangles.
+    pub degenerate_policy: DegeneratePolicy,
+    /// Texture coordinates have V pointing down (glTF, Direct3D): the tangent frame is computed as
+    /// for `v' = 1 - v`, which turns the handedness `w` so that `bitangent = w * cross(n, t)`
+    /// points towards increasing V as the file stores it upside down.
+    pub flip_v: bool,
+    /// Quality below which a triangle counts as degenerate (see [`DEFAULT_DEGENERATE_THRESHOLD`]).
+    pub degenerate_threshold: f32,
+    /// Upper bound on worker threads; 0 and 1 both mean the calling thread only.
+    pub threads: u32,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            method: Method::DEFAULT,
+            degenerate_policy: DegeneratePolicy::DEFAULT,
+            flip_v: false,
+            degenerate_threshold: DEFAULT_DEGENERATE_THRESHOLD,
+            threads: 0,
+        }
+    }
+}
+
+impl Options {
+    /// The listing, exactly: method LENGYEL with policy LEGACY.
+    ///
+    /// ```
+    /// use tbasis::{generate, Mesh, Options, Output};
+    ///
+    /// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+    /// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+    /// // The listing divides by the UV determinant, zero here: it writes what that gives.
+    /// let mesh = Mesh::new(&positions, &normals).with_texcoords(&[[0.5, 0.5]; 3]);
+    /// let mut tangents = [[0.0f32; 4]; 3];
+    /// generate(&mesh, &Options::legacy(), &mut Output::new(&mut tangents))?;
+    /// assert!(tangents[0].iter().any(|x| !x.is_finite()));
+    /// # Ok::<(), tbasis::Error>(())
+    /// ```
+    pub fn legacy() -> Self {
+        Options {
+            method: Method::Lengyel,
+            degenerate_policy: DegeneratePolicy::Legacy,
+            ..Options::default()
+        }
+    }
+
+    /// mikktspace.c's tangents, bit for bit: method MIKKTSPACE with policy LEGACY.
+    ///
+    /// ```
+    /// use tbasis::{generate, DegeneratePolicy, Error, Mesh, Method, Options, Output};
+    ///
+    /// // mikktspace.c needs texture coordinates.
+    /// let mesh = Mesh::new(&[[0.0f32; 3]; 3], &[[0.0, 0.0, 1.0f32]; 3]);
+    /// let mut tangents = [[0.0f32; 4]; 3];
+    /// let error = generate(&mesh, &Options::mikktspace(), &mut Output::new(&mut tangents)).unwrap_err();
+    /// assert_eq!(error, Error::MissingTexcoords { method: Method::Mikktspace, policy: DegeneratePolicy::Legacy });
+    /// ```
+    pub fn mikktspace() -> Self {
+        Options {
+            method: Method::Mikktspace,
+            degenerate_policy: DegeneratePolicy::Legacy,
+            ..Options::default()
+        }
+    }
+
+    /// With `method`. The policy stays as it is: policy LEGACY holds only with the methods that
+    /// have a legacy form, LENGYEL and MIKKTSPACE ([`Options::validate`]).
+    ///
+    /// ```
+    /// use tbasis::{DegeneratePolicy, Error, Method, Options};
+    ///
+    /// let options = Options::default().with_method(Method::Area);
+    /// assert_eq!(options.method, Method::Area);
+    /// let legacy = Options::legacy().with_method(Method::Area);
+    /// assert_eq!(legacy.validate(), Err(Error::NoLegacyForm { method: Method::Area }));
+    /// assert_eq!(legacy.with_policy(DegeneratePolicy::Skip).validate(), Ok(()));
+    /// ```
+    pub fn with_method(self, method: Method) -> Self {
+        Options { method, ..self }
+    }
+
+    /// With `policy` for degenerate triangles.
+    ///
+    /// ```
+    /// use tbasis::{generate, DegeneratePolicy, Mesh, Options, Output};
+    ///
+    /// let mesh = Mesh::new(&[[0.0f32; 3]; 3], &[[0.0, 0.0, 1.0f32]; 3]); // no texture coordinates
+    /// let mut tangents = [[0.0f32; 4]; 3];
+    /// let mut output = Output::new(&mut tangents);
+    /// assert!(generate(&mesh, &Options::legacy(), &mut output).is_err());
+    /// let skip = Options::legacy().with_policy(DegeneratePolicy::Skip);
+    /// assert_eq!(generate(&mesh, &skip, &mut output)?.fallback_vertices, 3);
+    /// # Ok::<(), tbasis::Error>(())
+    /// ```
+    pub fn with_policy(self, policy: DegeneratePolicy) -> Self {
+        Options {
+            degenerate_policy: policy,
+            ..self
+        }
+    }
+
+    /// With V pointing down (glTF, Direct3D): see [`Options::flip_v`].
+    ///
+    /// ```
+    /// use tbasis::{generate, Mesh, Options, Output};
+    ///
+    /// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+    /// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+    /// # let texcoords = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+    /// let mesh = Mesh::new(&positions, &normals).with_texcoords(&texcoords);
+    /// let mut tangents = [[0.0f32; 4]; 3];
+    /// generate(&mesh, &Options::default().with_flip_v(true), &mut Output::new(&mut tangents))?;
+    /// assert_eq!(tangents[0], [1.0, 0.0, 0.0, -1.0]); // the handedness turns
+    /// # Ok::<(), tbasis::Error>(())
+    /// ```
+    pub fn with_flip_v(self, flip_v: bool) -> Self {
+        Options { flip_v, ..self }
+    }
+
+    /// With at most `threads` worker threads (0 and 1: the calling thread only).
+    ///
+    /// ```
+    /// use tbasis::{generate, Mesh, Options, Output};
+    ///
+    /// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+    /// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+    /// # let texcoords = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+    /// let mesh = Mesh::new(&positions, &normals).with_texcoords(&texcoords);
+    /// let (mut one, mut four) = ([[0.0f32; 4]; 3], [[0.0f32; 4]; 3]);
+    /// generate(&mesh, &Options::default().with_threads(1), &mut Output::new(&mut one))?;
+    /// generate(&mesh, &Options::default().with_threads(4), &mut Output::new(&mut four))?;
+    /// assert_eq!(one, four);
+    /// # Ok::<(), tbasis::Error>(())
+    /// ```
+    pub fn with_threads(self, threads: u32) -> Self {
+        Options { threads, ..self }
+    }
+
+    /// With `threshold` as the quality below which a triangle is degenerate.
+    ///
+    /// ```
+    /// use tbasis::{generate, Mesh, Options, Output};
+    ///
+    /// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0f32]];
+    /// # let normals = [[0.0, 0.0, 1.0f32]; 3];
+    /// // A sliver in UV space, of quality q = 2*sqrt(3) * 1e-6 / 1.5, about 2.3e-6.
+    /// let sliver = [[0.0, 0.0], [1.0, 0.0], [0.5, 1e-6]];
+    /// let mesh = Mesh::new(&positions, &normals).with_texcoords(&sliver);
+    /// let mut tangents = [[0.0f32; 4]; 3];
+    /// let options = Options::default().with_degenerate_threshold(1e-7);
+    /// assert_eq!(generate(&mesh, &options, &mut Output::new(&mut tangents))?.degenerate_triangles, 0);
+    /// # Ok::<(), tbasis::Error>(())
+    /// ```
+    pub fn with_degenerate_threshold(self, threshold: f32) -> Self {
+        Options {
+            degenerate_threshold: threshold,
+            ..self
+        }
+    }
+
+    /// Checks what the types cannot: the threshold is finite and not negative, and policy LEGACY
+    /// comes with a method that has a legacy form (LENGYEL: the listing; MIKKTSPACE: mikktspace.c).
+    ///
+    /// ```
+    /// use tbasis::{Error, Method, Options};
+    ///
+    /// assert_eq!(Options::default().validate(), Ok(()));
+    /// let nan = Options::default().with_degenerate_threshold(f32::NAN);
+    /// assert!(matches!(nan.validate(), Err(Error::InvalidThreshold { .. })));
+    /// let angle = Options::legacy().with_method(Method::Angle);
+    /// assert_eq!(angle.validate(), Err(Error::NoLegacyForm { method: Method::Angle }));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        if !self.degenerate_threshold.is_finite() || self.degenerate_threshold < 0.0 {
+            return Err(Error::InvalidThreshold {
+                threshold: self.degenerate_threshold,
+            });
+        }
+        let has_legacy_form = matches!(self.method, Method::Lengyel | Method::Mikktspace);
+        if self.degenerate_policy == DegeneratePolicy::Legacy && !has_legacy_form {
+            return Err(Error::NoLegacyForm { method: self.method });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,294 @@
+//! Spreading a call over threads: every method splits its work into consecutive ranges (of
+//! vertices, triangles, corners or cells), each worker writing only its own range, so the result
+//! is bit-identical whatever the thread count.
+//!
+//! One rule decides how many workers a call gets, for every method: at most `threads`, and at
+//! most one per [`MIN_TRIANGLES_PER_WORKER`] triangles, since below that starting a thread costs
+//! more than it saves. With one worker everything runs on the calling thread and nothing is
+//! allocated here, so a call with caller scratch on one thread allocates nothing.
+#![forbid(unsafe_code)]
+
+use std::sync::{Mutex, PoisonError};
+
+use crate::kernel::error::Error;
+use crate::kernel::mesh::Mesh;
+use crate::kernel::report::Report;
+
+/// Triangles each worker should have at least. Unit tests split small meshes too
+/// (`entry/thread_count_tests.rs`).
+pub(crate) const MIN_TRIANGLES_PER_WORKER: usize = if cfg!(test) { 8 } else { 16 * 1024 };
+
+/// At most this many ranges: beyond it another thread would not pay on any core count in use.
+pub(crate) const MAX_RANGES: usize = 64;
+
+/// How many workers a call on `triangles` triangles uses: at most `threads`, at least 1.
+pub fn workers_for(threads: u32, triangles: usize) -> usize {
+    (threads.max(1) as usize)
+        .min(triangles / MIN_TRIANGLES_PER_WORKER)
+        .clamp(1, MAX_RANGES)
+}
+
+/// [`workers_for`], for work where each worker reads every triangle with a corner in its vertex
+/// range: 1 unless the triangle order follows the vertex order.
+pub fn worker_count(threads: u32, mesh: &Mesh) -> usize {
+    let vertex_count = mesh.vertex_count();
+    let workers = workers_for(threads, mesh.corner_count() / 3);
+    if workers > 1 && !split_pays_off(mesh, &range_ends(vertex_count, workers)) {
+        return 1;
+    }
+    workers
+}
+
+/// Every how many triangles [`split_pays_off`] looks at one.
+const LOCALITY_SAMPLE_STEP: usize = 16;
+
+/// Whether splitting the vertices into ranges `ends` saves time: every worker reads each triangle
+/// that has a corner in its range, so when the triangle order does not follow the vertex order
+/// (most triangles spanning several ranges), each worker would redo nearly the whole mesh. Looks
+/// at every 16th triangle; true when none of the workers would see more than 3/4 of them.
+fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
+    let Ok(triangle_count) = mesh.indices.triangle_count(mesh.vertex_count()) else {
+        return true;
+    };
+    let mut seen = vec![0usize; ends.len()];
+    let mut sampled = 0usize;
+    for t in (0..triangle_count).step_by(LOCALITY_SAMPLE_STEP) {
+        let workers = mesh.indices.triangle(t).map(|v| ends.partition_point(|&end| end <= v));
+        for (k, &w) in workers.iter().enumerate() {
+            if w < seen.len() && !workers[..k].contains(&w) {
+                seen[w] += 1;
+            }
+        }
+        sampled += 1;
+    }
+    seen.iter().all(|&count| 4 * count <= 3 * sampled)
+}
+
+/// The exclusive ends of `workers` near-equal consecutive ranges of `count` items.
+pub fn range_ends(count: usize, workers: usize) -> Vec<usize> {
+    ends(count, workers).collect()
+}
+
+/// [`range_ends`] one at a time, without allocating.
+pub fn ends(count: usize, workers: usize) -> impl Iterator<Item = usize> {
+    (1..=workers).map(move |w| (count as u128 * w as u128 / workers as u128) as usize)
+}
+
+/// Runs `job` on every part, the first on the calling thread and the others on scoped threads,
+/// and returns the results in part order. A panic in a worker resumes on the calling thread.
+pub fn run<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync) -> Vec<R> {
+    run_spawning(parts, job, || true)
+}
+
+/// [`run`], asking `may_spawn` before each thread so a test can make spawning fail. A part whose
+/// thread cannot be started (out of threads or memory) runs on the calling thread instead: parts
+/// are independent, so the bits are the same either way, never a partial output.
+fn run_spawning<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync, may_spawn: impl Fn() -> bool) -> Vec<R> {
+    // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
+    // nothing.
+    let slots: Vec<Mutex<Option<P>>> = parts.into_iter().map(|part| Mutex::new(Some(part))).collect();
+    let take = |slot: &Mutex<Option<P>>| {
+        let part = slot.lock().unwrap_or_else(PoisonError::into_inner).take();
+        part.expect("each part runs once")
+    };
+    let Some((first, others)) = slots.split_first() else {
+        return Vec::new();
+    };
+    std::thread::scope(|scope| {
+        let spawned: Vec<_> = others
+            .iter()
+            .map(|slot| {
+                let work = || job(take(slot));
+                may_spawn()
+                    .then(|| std::thread::Builder::new().spawn_scoped(scope, work).ok())
+                    .flatten()
+            })
+            .collect();
+        let mut results = vec![job(take(first))];
+        for (slot, handle) in others.iter().zip(spawned) {
+            results.push(match handle {
+                Some(handle) => handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+                None => job(take(slot)),
+            });
+        }
+        results
+    })
+}
+
+/// Runs `a` on the calling thread and `b` beside it (after `a`, on the calling thread, when no
+/// thread can be started) and returns both results. A panic in either resumes on the caller.
+pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    let (mut a_result, mut b_result) = (None, None);
+    let jobs: Vec<Box<dyn FnOnce() + Send + '_>> =
+        vec![Box::new(|| a_result = Some(a())), Box::new(|| b_result = Some(b()))];
+    run(jobs, |job| job());
+    (
+        a_result.expect("run ran the first job"),
+        b_result.expect("run ran the second job"),
+    )
+}
+
+/// The workers' reports merged, or the first worker's error.
+pub fn merge(results: Vec<Result<Report, Error>>) -> Result<Report, Error> {
+    results.into_iter().fold(Ok(Report::default()), merge_results)
+}
+
+/// Two consecutive workers' results merged: both reports, or the first error.
+pub fn merge_results(first: Result<Report, Error>, second: Result<Report, Error>) -> Result<Report, Error> {
+    let (mut total, more) = (first?, second?);
+    total.merge(&more);
+    Ok(total)
+}
+
+/// The exclusive ends of consecutive ranges, held without allocating.
+pub(crate) struct Ranges {
+    ends: [usize; MAX_RANGES],
+    len: usize,
+}
+
+impl Ranges {
+    /// Ranges ending at `ends` (at most [`MAX_RANGES`], the last one ending the whole).
+    pub fn from_ends(ends: impl IntoIterator<Item = usize>) -> Ranges {
+        let mut ranges = Ranges {
+            ends: [0; MAX_RANGES],
+            len: 0,
+        };
+        for end in ends.into_iter().take(MAX_RANGES) {
+            ranges.ends[ranges.len] = end;
+            ranges.len += 1;
+        }
+        ranges
+    }
+
+    /// The ends, in order.
+    pub fn ends(&self) -> &[usize] {
+        &self.ends[..self.len]
+    }
+}
+
+/// The ranges `triangles` triangles split into for [`workers_for`] workers.
+pub(crate) fn ranges(threads: u32, triangles: usize) -> Ranges {
+    Ranges::from_ends(ends(triangles, workers_for(threads, triangles)))
+}
+
+/// Ranges of `count` items, `per` to a triangle, cut where [`ranges`] cuts `count / per` triangles
+/// (the last ending at `count`).
+pub(crate) fn item_ranges(threads: u32, count: usize, per: usize) -> Ranges {
+    let triangles = ranges(threads, count / per);
+    let last = triangles.ends().len() - 1;
+    Ranges::from_ends(
+        triangles
+            .ends()
+            .iter()
+            .enumerate()
+            .map(|(i, &end)| if i == last { count } else { per * end }),
+    )
+}
+
+/// `items` (`per` entries per triangle) cut at the range ends `ends`.
+pub(crate) fn split<'a, T>(items: &'a mut [T], ends: &'a [usize], per: usize) -> impl Iterator<Item = &'a mut [T]> {
+    let mut rest = items;
+    let mut first = 0;
+    ends.iter().map(move |&end| {
+        let (part, after) = core::mem::take(&mut rest).split_at_mut(per * (end - first));
+        (rest, first) = (after, end);
+        part
+    })
+}
+
+/// Runs `job(first triangle, part)` for every range, the first on the calling thread; with one
+/// range, without allocating.
+pub(crate) fn run_ranges<P: Send>(ends: &[usize], mut parts: impl Iterator<Item = P>, job: impl Fn(usize, P) + Sync) {
+    if ends.len() <= 1 {
+        if let Some(part) = parts.next() {
+            job(0, part);
+        }
+        return;
+    }
+    let starts = core::iter::once(0).chain(ends.iter().copied());
+    let parts: Vec<(usize, P)> = starts.zip(parts).collect();
+    run(parts, |(first, part)| job(first, part));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_cover_every_vertex_once() {
+        assert_eq!(range_ends(10, 3), vec![3, 6, 10]);
+        assert_eq!(range_ends(usize::MAX, 2).last(), Some(&usize::MAX));
+    }
+
+    /// A strip of `n` vertices with triangles of consecutive vertices, or (`scattered`) with one
+    /// corner in each half of the vertex range.
+    fn strip(n: usize, scattered: bool) -> (Vec<[f32; 3]>, Vec<u32>) {
+        let positions = vec![[0.0f32; 3]; n];
+        let half = (n / 2) as u32;
+        let indices = (0..n as u32 / 2 - 2)
+            .flat_map(|i| {
+                if scattered {
+                    [i, half + i, i + 1]
+                } else {
+                    [2 * i, 2 * i + 1, 2 * i + 2]
+                }
+            })
+            .collect();
+        (positions, indices)
+    }
+
+    fn workers_for(threads: u32, n: usize, scattered: bool) -> usize {
+        use crate::kernel::mesh::Indices;
+        use crate::kernel::views::strided::Strided;
+        let (positions, indices) = strip(n, scattered);
+        let mesh = Mesh {
+            positions: Strided::from_slice(&positions),
+            normals: Strided::from_slice(&positions),
+            texcoords: None,
+            indices: Indices::U32(Strided::from_slice(&indices)),
+        };
+        worker_count(threads, &mesh)
+    }
+
+    #[test]
+    fn workers_follow_threads_size_and_locality() {
+        // A strip of n vertices has about n / 2 triangles.
+        let per = 2 * MIN_TRIANGLES_PER_WORKER + 4;
+        assert_eq!(workers_for(8, per, false), 1);
+        assert_eq!(workers_for(0, 1000 * per, false), 1);
+        assert_eq!(workers_for(4, 1000 * per, false), 4);
+        assert_eq!(workers_for(4, 3 * per, false), 3);
+        // Every triangle spans both halves: both workers would read all of them.
+        assert_eq!(workers_for(2, 1000 * per, true), 1);
+    }
+
+    #[test]
+    fn run_keeps_part_order() {
+        assert_eq!(run(vec![1, 2, 3, 4], |x| x * 10), vec![10, 20, 30, 40]);
+        assert_eq!(run(Vec::<u8>::new(), |x| x), Vec::<u8>::new());
+    }
+
+    #[test]
+    fn join_returns_both_results() {
+        let caller = std::thread::current().id();
+        let (a, b) = join(|| (1, std::thread::current().id()), || (2, std::thread::current().id()));
+        assert_eq!((a.0, b.0), (1, 2));
+        assert_eq!(a.1, caller);
+    }
+
+    #[test]
+    fn parts_whose_thread_fails_to_start_run_on_the_caller() {
+        let caller = std::thread::current().id();
+        let parts: Vec<usize> = (0..6).collect();
+        let on_caller = |part: usize| (part * 10, std::thread::current().id() == caller);
+        let none = run_spawning(parts.clone(), on_caller, || false);
+        assert_eq!(none, (0..6).map(|p| (p * 10, true)).collect::<Vec<_>>());
+        // Every other spawn fails: those parts run on the caller, the rest on their threads.
+        let attempt = std::sync::atomic::AtomicUsize::new(0);
+        let alternate = run_spawning(parts, on_caller, || {
+            attempt.fetch_add(1, std::sync::atomic::Ordering::Relaxed) % 2 == 1
+        });
+        let expected: Vec<_> = (0..6).map(|p| (p * 10, p == 0 || p % 2 == 1)).collect();
+        assert_eq!(alternate, expected);
+    }
+}

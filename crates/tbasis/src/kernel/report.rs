@@ -1,0 +1,84 @@
+//! What a call found in the mesh and what it did about it.
+#![forbid(unsafe_code)]
+
+/// What a call found in the mesh and what it did about it: returned on success, and carried by
+/// [`crate::Error::DegenerateUv`].
+///
+/// ```
+/// use tbasis::{generate, Mesh, Options, Output};
+///
+/// # let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [5.0, 5.0, 5.0f32]];
+/// # let normals = [[0.0, 0.0, 1.0f32]; 4];
+/// # let texcoords = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]];
+/// // Four vertices, one triangle: vertex 3 is in no triangle.
+/// let mesh = Mesh::new(&positions, &normals).with_texcoords(&texcoords).with_indices(&[0u16, 1, 2]);
+/// let mut tangents = [[0.0f32; 4]; 4];
+/// let report = generate(&mesh, &Options::default(), &mut Output::new(&mut tangents))?;
+/// assert_eq!(report.unreferenced_vertices, 1);
+/// assert_eq!(report.degenerate_triangles, 0);
+/// assert_eq!(report.first_degenerate_triangle, usize::MAX);
+/// # Ok::<(), tbasis::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Report {
+    /// Triangles whose UV quality is below the threshold, whose positions have zero area, or
+    /// whose inputs are not finite. Policy LEGACY counts exactly-zero UV determinants only.
+    pub degenerate_triangles: usize,
+    /// Index of the first such triangle; `usize::MAX` when none.
+    pub first_degenerate_triangle: usize,
+    /// Vertices given the fallback frame built from their normal alone.
+    pub fallback_vertices: usize,
+    /// Vertices used by non-degenerate triangles of both handedness.
+    pub mirrored_vertices: usize,
+    /// Vertices no triangle uses.
+    pub unreferenced_vertices: usize,
+    /// Vertices that took their tangent from neighbours (policy INHERIT).
+    pub inherited_vertices: usize,
+    /// Vertices whose normal is zero, not finite, or off unit length by more than 1e-3 (it was
+    /// normalized, or, when it has no direction, ignored). Not counted by policy LEGACY.
+    pub abnormal_normals: usize,
+    /// Corners where method MIKKTSPACE with policy SKIP or INHERIT replaced what mikktspace.c
+    /// gives (a non-finite, zero or non-unit tangent, or one not perpendicular to the normal) with
+    /// a finite unit tangent perpendicular to the normal.
+    pub repaired_corners: usize,
+    /// Method MIKKTSPACE: vertices whose corners do not all get the same bits (the vertices a
+    /// seam split duplicates). The per-vertex output gives each such vertex its first corner's.
+    pub split_vertices: usize,
+}
+
+impl Default for Report {
+    fn default() -> Self {
+        Report {
+            degenerate_triangles: 0,
+            first_degenerate_triangle: usize::MAX,
+            fallback_vertices: 0,
+            mirrored_vertices: 0,
+            unreferenced_vertices: 0,
+            inherited_vertices: 0,
+            abnormal_normals: 0,
+            repaired_corners: 0,
+            split_vertices: 0,
+        }
+    }
+}
+
+impl Report {
+    /// Adds the counts another worker found over its own vertices and triangles.
+    pub(crate) fn merge(&mut self, other: &Report) {
+        self.degenerate_triangles += other.degenerate_triangles;
+        self.first_degenerate_triangle = self.first_degenerate_triangle.min(other.first_degenerate_triangle);
+        self.fallback_vertices += other.fallback_vertices;
+        self.mirrored_vertices += other.mirrored_vertices;
+        self.unreferenced_vertices += other.unreferenced_vertices;
+        self.inherited_vertices += other.inherited_vertices;
+        self.abnormal_normals += other.abnormal_normals;
+        self.repaired_corners += other.repaired_corners;
+        self.split_vertices += other.split_vertices;
+    }
+
+    /// Records triangle `t` as degenerate.
+    pub(crate) fn note_degenerate(&mut self, t: usize) {
+        self.degenerate_triangles += 1;
+        self.first_degenerate_triangle = self.first_degenerate_triangle.min(t);
+    }
+}

@@ -1,0 +1,82 @@
+//! Runtime choice of the widest vector instructions the CPU has, for the robust path's kernels
+//! and MIKKTSPACE's corner terms.
+//!
+//! The kernels are written once, as loops over lanes that LLVM vectorizes (`robust::batch`). A
+//! build for the default x86-64 target may only assume SSE2, four lanes per instruction; here the
+//! same kernels are compiled a second time with AVX2 enabled (eight lanes) and that copy runs when
+//! the CPU supports it. Both copies perform the same IEEE operations in the same order on every
+//! lane: no fused multiply-add (FMA is not enabled, and Rust never contracts `a * b + c`), square
+//! roots and divisions correctly rounded in both, and sums added one triangle at a time outside
+//! the lane loops. So every path gives the same bits (`tests` below run each path the machine
+//! has and compare, `entry/determinism_tests.rs`).
+//!
+//! This module and the strided views are the crate's only `unsafe` code: calling a function
+//! compiled for AVX2 is sound only on a CPU that has it, which is checked right before.
+
+/// A set of vector instructions the kernels can be compiled for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Path {
+    /// What the build target guarantees (SSE2 on x86-64).
+    Baseline,
+    /// AVX2, chosen at run time.
+    Avx2,
+}
+
+impl Path {
+    /// Whether this CPU can run the path.
+    pub fn supported(self) -> bool {
+        match self {
+            Path::Baseline => true,
+            #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+            Path::Avx2 => std::is_x86_feature_detected!("avx2"),
+            #[cfg(not(any(target_arch = "x86", target_arch = "x86_64")))]
+            Path::Avx2 => false,
+        }
+    }
+
+    /// The widest supported path (a test may pin one on its thread).
+    pub fn best() -> Path {
+        #[cfg(test)]
+        if let Some(path) = tests::PINNED.with(core::cell::Cell::get) {
+            return path;
+        }
+        if Path::Avx2.supported() {
+            Path::Avx2
+        } else {
+            Path::Baseline
+        }
+    }
+}
+
+/// Runs `kernel` compiled for the best path this CPU supports. `kernel` and what it calls must be
+/// inlined into it (`#[inline(always)]`) for the wider copy to exist.
+#[inline(always)]
+pub(crate) fn run<R>(kernel: impl FnOnce() -> R) -> R {
+    match Path::best() {
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        // SAFETY: `best` returns Avx2 only when the CPU reports AVX2.
+        Path::Avx2 => unsafe { with_avx2(kernel) },
+        _ => kernel(),
+    }
+}
+
+/// `kernel` compiled with AVX2 enabled.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2")]
+unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
+    kernel()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::Path;
+
+    std::thread_local! {
+        /// The path [`Path::best`] returns on this thread, when set (`entry/determinism_tests.rs`
+        /// runs every supported path and compares).
+        pub static PINNED: core::cell::Cell<Option<Path>> = const { core::cell::Cell::new(None) };
+    }
+}

@@ -1,0 +1,318 @@
+//! The per-vertex working arrays of the listing and the per-vertex methods: running sums and
+//! flags per vertex, and for policy INHERIT room for its adjacency, laid out in one call's memory
+//! ([`crate::kernel::memory`]).
+#![forbid(unsafe_code)]
+
+use core::ops::Range;
+
+use glam::Vec3;
+
+use crate::kernel::error::Error;
+use crate::kernel::memory::{bytes_of, Arena};
+use crate::kernel::mesh::{Mesh, Output, OutputPart};
+use crate::kernel::options::DegeneratePolicy;
+use crate::kernel::parallel;
+use crate::kernel::report::Report;
+use crate::kernel::views::strided::StridedMut;
+
+/// Per-vertex running sums.
+///
+/// Policy LEGACY: `primary` is the listing's `tan1` (sum of dP/du) and `secondary` its `tan2`
+/// (sum of dP/dv). Other policies: `primary` sums the tangents of right-handed corners and
+/// `secondary` those of left-handed corners, `weight` the total weight of both; once a vertex is
+/// resolved, `primary` holds its unit tangent and `weight` its handedness ([`Self::keep_frame`]).
+/// For the per-corner output every vertex keeps its frame that way, and a mirror-fold vertex
+/// flagged [`flag::SIDE_FRAME`] keeps in `secondary` the unit tangent of its other side.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VertexSums {
+    /// See the type's description.
+    pub primary: [f32; 3],
+    /// See the type's description.
+    pub weight: f32,
+    /// See the type's description.
+    pub secondary: [f32; 3],
+}
+
+/// Per-vertex flag bits.
+pub mod flag {
+    /// Some triangle uses the vertex.
+    pub(crate) const REFERENCED: u8 = 1;
+    /// A non-degenerate triangle with positive UV determinant uses the vertex.
+    pub(crate) const POSITIVE_UV: u8 = 2;
+    /// A non-degenerate triangle with negative UV determinant uses the vertex.
+    pub(crate) const NEGATIVE_UV: u8 = 4;
+    /// The vertex has its final tangent in `primary` (policy INHERIT).
+    pub(crate) const RESOLVED: u8 = 8;
+    /// The vertex waits for its neighbours (policy INHERIT) and is written after them.
+    pub(crate) const DEFERRED: u8 = 16;
+    /// Per-corner output: `secondary` holds the frame of the mirror-fold side the vertex's own
+    /// frame does not come from (its `w` is minus the vertex's).
+    pub(crate) const SIDE_FRAME: u8 = 32;
+    /// Policy INHERIT: the vertex is queued for the current ring (cleared when the ring ends).
+    pub(crate) const CANDIDATE: u8 = 64;
+    /// The first non-degenerate corner of the vertex, in triangle order, is left-handed: at a
+    /// mirror fold the vertex takes that side's frame unless the other side's sum is more than
+    /// twice as long ([`crate::kernel::fold`]).
+    pub(crate) const FIRST_LEFT: u8 = 128;
+}
+
+impl VertexSums {
+    /// Keeps a resolved frame in place of the sums: `primary` = tangent, `weight` = `w`.
+    #[inline(always)]
+    pub fn keep_frame(&mut self, tangent: Vec3, w: f32) {
+        self.primary = tangent.to_array();
+        self.weight = w;
+    }
+
+    /// The frame [`Self::keep_frame`] kept, as written out: `x, y, z, w`.
+    #[inline(always)]
+    pub fn kept_frame(&self) -> [f32; 4] {
+        let [x, y, z] = self.primary;
+        [x, y, z, self.weight]
+    }
+
+    /// The other side's frame a [`flag::SIDE_FRAME`] vertex keeps, as written out.
+    #[inline(always)]
+    pub fn kept_side_frame(&self) -> [f32; 4] {
+        let [x, y, z] = self.secondary;
+        [x, y, z, -self.weight]
+    }
+}
+
+/// Bytes the arrays for `vertex_count` vertices and `link_bytes` of adjacency take, as
+/// [`layout`] lays them out: `vertex_count * 29 + link_bytes + 3` (the 3 let the sums start at a
+/// 4-byte boundary wherever the memory begins), 0 for an empty mesh. `None` on overflow.
+pub(crate) fn bytes(vertex_count: usize, link_bytes: usize) -> Option<usize> {
+    if vertex_count == 0 {
+        return Some(0);
+    }
+    bytes_of(|arena| layout(arena, vertex_count, link_bytes).map(|_| ())).ok()
+}
+
+/// Bytes a per-vertex call with `policy` needs besides the sums and flags: policy INHERIT's
+/// adjacency ([`adjacency_bytes`]), nothing for the other policies or an empty mesh.
+pub(crate) fn link_bytes(policy: DegeneratePolicy, vertex_count: usize, corner_count: usize) -> Option<usize> {
+    if policy != DegeneratePolicy::Inherit || vertex_count == 0 {
+        return Some(0);
+    }
+    adjacency_bytes(vertex_count, corner_count)
+}
+
+/// Bytes policy INHERIT's adjacency (`robust::inherit::propagate`) needs for a mesh of `vertex_count` vertices and `corner_count` corners:
+/// `2 * vertex_count + corner_count` entries (a range start and a queue slot per vertex, a
+/// triangle per corner) of 4 bytes, or of 8 when a count does not fit in 32 bits.
+fn adjacency_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
+    let width = if wide_links(vertex_count, corner_count) { 8 } else { 4 };
+    vertex_count
+        .checked_mul(2)?
+        .checked_add(corner_count)?
+        .checked_mul(width)
+}
+
+/// Whether the adjacency needs 8-byte entries: a vertex index, a triangle index or a count of
+/// corners may not fit in 32 bits.
+pub(crate) fn wide_links(vertex_count: usize, corner_count: usize) -> bool {
+    vertex_count.max(corner_count) > u32::MAX as usize
+}
+
+/// Where vertex `v` sits in a range of `len` vertices starting at `first`, if the range holds it.
+#[inline(always)]
+pub(crate) fn slot_in(v: usize, first: usize, len: usize) -> Option<usize> {
+    let slot = v.wrapping_sub(first);
+    (slot < len).then_some(slot)
+}
+
+/// The per-vertex working arrays of one call, or of one worker's consecutive range of vertices.
+pub struct Scratch<'s> {
+    /// Running sums, one per vertex of the range.
+    pub sums: &'s mut [VertexSums],
+    /// Flag bits, one byte per vertex of the range.
+    pub flags: &'s mut [u8],
+    /// The first vertex of the range: vertex `v` is at `v - first`.
+    pub first: usize,
+    /// Room for policy INHERIT's adjacency (whole-mesh scratch only).
+    pub links: Links<'s>,
+}
+
+/// Memory for policy INHERIT's adjacency (4-byte aligned, any contents), which only a call that
+/// defers some vertex writes: in fresh memory its pages cost nothing until then.
+pub struct Links<'s>(pub &'s mut [u8]);
+
+impl Links<'_> {
+    /// The bytes, as many as were asked for.
+    pub fn bytes(&mut self) -> &mut [u8] {
+        self.0
+    }
+}
+
+impl<'s> Scratch<'s> {
+    /// Where vertex `v` sits in this range's arrays, if the range holds it.
+    #[inline(always)]
+    pub fn slot(&self, v: usize) -> Option<usize> {
+        slot_in(v, self.first, self.flags.len())
+    }
+
+    /// The same arrays cut at the vertices in `ends` (exclusive ends, increasing, the last the
+    /// vertex count), one part per worker.
+    pub fn split(&mut self, ends: &[usize]) -> Vec<Scratch<'_>> {
+        let (mut sums, mut flags): (&mut [VertexSums], &mut [u8]) = (&mut *self.sums, &mut *self.flags);
+        let mut first = self.first;
+        let mut parts = Vec::with_capacity(ends.len());
+        for &end in ends {
+            let (part_sums, rest_sums) = core::mem::take(&mut sums).split_at_mut(end - first);
+            let (part_flags, rest_flags) = core::mem::take(&mut flags).split_at_mut(end - first);
+            parts.push(Scratch {
+                sums: part_sums,
+                flags: part_flags,
+                first,
+                links: Links(&mut []),
+            });
+            (sums, flags, first) = (rest_sums, rest_flags, end);
+        }
+        parts
+    }
+}
+
+/// Runs `job` on the arrays of `workers` consecutive ranges of vertices, each with its part of
+/// `output` if there is one, the first range on the calling thread and the others on their own,
+/// and folds the results in range order with `merge`. With one worker: on the whole arrays and
+/// output, allocating nothing.
+pub fn for_each_range<R: Send>(
+    scratch: &mut Scratch,
+    output: Option<&mut Output>,
+    workers: usize,
+    job: impl Fn(&mut Scratch, Option<&mut OutputPart>) -> R + Sync,
+    merge: impl FnMut(R, R) -> R,
+) -> R {
+    if workers == 1 {
+        return job(scratch, output.map(Output::whole).as_mut());
+    }
+    let ends = parallel::range_ends(scratch.flags.len(), workers);
+    let outputs: Vec<Option<OutputPart>> = match output {
+        Some(output) => output.split(&ends).into_iter().map(Some).collect(),
+        None => ends.iter().map(|_| None).collect(),
+    };
+    let parts = scratch.split(&ends).into_iter().zip(outputs).collect();
+    let results = parallel::run(parts, |(mut part, mut out)| job(&mut part, out.as_mut()));
+    results.into_iter().reduce(merge).expect("at least one range")
+}
+
+/// The per-corner output of the per-vertex pipelines, from the frames their vertices kept
+/// ([`VertexSums::keep_frame`]): each corner gets its vertex's, then `adjust(triangles, part)` may
+/// rewrite corners of those triangles (`part`'s element 0 is the first one's corner 0). With
+/// several workers, each writes a consecutive range of triangles.
+pub fn write_corner_frames(
+    mesh: &Mesh,
+    threads: u32,
+    sums: &[VertexSums],
+    tangents: &mut StridedMut<[f32; 4]>,
+    adjust: impl Fn(Range<usize>, &mut StridedMut<[f32; 4]>) -> Result<(), Error> + Sync,
+) -> Result<(), Error> {
+    let write = |triangles: Range<usize>, part: &mut StridedMut<[f32; 4]>| {
+        let first_corner = 3 * triangles.start;
+        for c in first_corner..3 * triangles.end {
+            part.set(c - first_corner, sums[mesh.indices.corner(c)].kept_frame());
+        }
+        adjust(triangles, part)
+    };
+    let triangle_count = mesh.corner_count() / 3;
+    let workers = parallel::worker_count(threads, mesh);
+    if workers == 1 {
+        return write(0..triangle_count, tangents);
+    }
+    let ends = parallel::range_ends(triangle_count, workers);
+    let corner_ends: Vec<usize> = ends.iter().map(|&end| 3 * end).collect();
+    let starts = core::iter::once(0).chain(ends.iter().copied());
+    let parts: Vec<_> = tangents
+        .split(&corner_ends)
+        .into_iter()
+        .zip(starts.zip(ends.iter().copied()))
+        .collect();
+    parallel::run(parts, |(mut part, (start, end))| write(start..end, &mut part))
+        .into_iter()
+        .collect()
+}
+
+/// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena`: the
+/// sums, the adjacency (right after them, so 4-byte aligned), the flags; the sums and flags zeroed.
+pub fn layout<'a>(arena: &mut Arena<'a>, vertex_count: usize, link_bytes: usize) -> Result<Scratch<'a>, Error> {
+    let sums: &mut [VertexSums] = arena.take(vertex_count)?;
+    let links = arena.take(link_bytes)?;
+    let flags: &mut [u8] = arena.take(vertex_count)?;
+    sums.fill(VertexSums::default());
+    flags.fill(0);
+    Ok(Scratch {
+        sums,
+        flags,
+        first: 0,
+        links: Links(links),
+    })
+}
+
+/// A vertex used by non-degenerate triangles of both UV orientations: a mirror fold.
+#[inline(always)]
+pub fn is_mirror_fold(flags: u8) -> bool {
+    let both = flag::POSITIVE_UV | flag::NEGATIVE_UV;
+    flags & both == both
+}
+
+/// Adds what the flags tell to `report`: vertices no triangle uses, and mirror folds.
+pub(crate) fn count_flags(flags: &[u8], report: &mut Report) {
+    for &f in flags {
+        report.unreferenced_vertices += usize::from(f & flag::REFERENCED == 0);
+        report.mirrored_vertices += usize::from(is_mirror_fold(f));
+    }
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `layout` in memory of `size` bytes at byte offset `offset` of a buffer.
+    fn carve(buffer: &mut [u8], vertex_count: usize, link_bytes: usize) -> Result<usize, Error> {
+        let scratch = layout(&mut Arena::Carve(buffer), vertex_count, link_bytes)?;
+        let aligned = scratch.links.0.is_empty() || scratch.links.0.as_ptr() as usize % 4 == 0;
+        assert!(aligned, "adjacency not aligned");
+        Ok(scratch.links.0.len())
+    }
+
+    #[test]
+    fn the_size_is_enough_at_every_alignment_and_one_byte_less_is_not() {
+        for vertex_count in [1usize, 2, 7, 100] {
+            for link_bytes in [0, 4 * (2 * vertex_count + 9)] {
+                let size = bytes(vertex_count, link_bytes).unwrap();
+                assert_eq!(size, vertex_count * 29 + link_bytes + 3, "the documented formula");
+                let mut buffer = vec![0u8; size + 8];
+                for offset in 0..4 {
+                    assert_eq!(
+                        carve(&mut buffer[offset..offset + size], vertex_count, link_bytes),
+                        Ok(link_bytes)
+                    );
+                }
+                // With the worst alignment, one byte less must fail.
+                let worst = (0..4).find(|o| (buffer[*o..].as_ptr() as usize) % 4 == 1).unwrap();
+                assert!(carve(&mut buffer[worst..worst + size - 1], vertex_count, link_bytes).is_err());
+            }
+        }
+        assert_eq!(bytes(0, 0), Some(0));
+        assert_eq!(bytes(usize::MAX, 0), None);
+    }
+
+    #[test]
+    fn inherit_needs_its_adjacency_and_the_other_policies_nothing_more() {
+        for policy in [
+            DegeneratePolicy::Legacy,
+            DegeneratePolicy::Skip,
+            DegeneratePolicy::Reject,
+        ] {
+            assert_eq!(link_bytes(policy, 10, 30), Some(0));
+        }
+        let inherit = DegeneratePolicy::Inherit;
+        assert_eq!(link_bytes(inherit, 0, 30), Some(0));
+        // 4 bytes per entry: a start and a queue slot per vertex, one entry per corner.
+        assert_eq!(link_bytes(inherit, 10, 30), Some(4 * (2 * 10 + 30)));
+        let size = bytes(10, link_bytes(inherit, 10, 30).unwrap());
+        assert_eq!(size, Some(10 * 37 + 30 * 4 + 3));
+        assert_eq!(link_bytes(inherit, usize::MAX / 2, 30), None);
+    }
+}

@@ -1,0 +1,42 @@
+//! The caller's vertex attributes as mikktspace.c's callbacks would hand them over.
+#![forbid(unsafe_code)]
+
+use crate::kernel::mesh::Mesh;
+use crate::kernel::vector::Vec3;
+
+/// Reads vertex attributes, with `v' = 1 - v` applied first when the texture's V points down.
+#[derive(Clone, Copy)]
+pub(crate) struct Attributes<'a> {
+    pub mesh: &'a Mesh<'a>,
+    pub flip_v: bool,
+}
+
+impl Attributes<'_> {
+    #[inline(always)]
+    pub fn position(&self, v: u32) -> Vec3 {
+        self.mesh.positions.get(v as usize)
+    }
+
+    #[inline(always)]
+    pub fn normal(&self, v: u32) -> Vec3 {
+        self.mesh.normals.get(v as usize)
+    }
+
+    /// The texture coordinate; the caller has checked that the mesh has them.
+    #[inline(always)]
+    pub fn texcoord(&self, v: u32) -> [f32; 2] {
+        let uv = self.mesh.texcoords.map_or([0.0; 2], |uvs| uvs.get(v as usize));
+        if self.flip_v {
+            [uv[0], 1.0 - uv[1]]
+        } else {
+            uv
+        }
+    }
+
+    /// Position, normal and texture coordinate: the eight floats corners are welded by.
+    #[inline(always)]
+    pub fn key(&self, v: u32) -> [f32; 8] {
+        let ([px, py, pz], [nx, ny, nz], [u, w]) = (self.position(v), self.normal(v), self.texcoord(v));
+        [px, py, pz, nx, ny, nz, u, w]
+    }
+}

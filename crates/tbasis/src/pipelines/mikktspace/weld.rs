@@ -1,0 +1,545 @@
+//! Welding corners: mikktspace.c treats corners whose position, normal and texture coordinate
+//! compare equal with `==` as one vertex (`GenerateSharedVerticesIndexList`).
+//!
+//! mikktspace.c finds equal corners by sorting them into a grid along the widest axis of their
+//! bounding box and splitting each cell at the midpoint of its widest extent until a part holds one
+//! value (`MergeVertsFast`); each corner then takes the index of the first equal corner in the order
+//! that splitting leaves. That order is visible downstream: the representative's bits are read
+//! (a `-0.0` against a `+0.0`), a cell whose midpoint is not finite is left unwelded, and the
+//! representative's index decides which edges end mikktspace.c's edge sort (see `neighbors`). So
+//! the splitting is replayed step by step, its recursion on a stack, and its final quadratic search
+//! compares vertex numbers first: corners of one vertex are equal unless a float is `NaN`; corners
+//! of different vertices at the same position (seams, unwelded exports) compare per-vertex hashes,
+//! and read their attributes only when those agree. Cells are independent, so ranges of them run on separate threads.
+#![forbid(unsafe_code)]
+
+use super::attributes::Attributes;
+use super::NONE;
+use crate::kernel::error::Error;
+use crate::kernel::memory::Arena;
+use crate::kernel::parallel::{self, Ranges};
+use crate::kernel::vector::Vec3;
+
+/// mikktspace.c's grid: cells along the widest axis of the bounding box.
+const GRID_CELLS: usize = 2048;
+
+/// Marks a vertex with a `NaN` among its attributes in [`WeldScratch::cells`]: it equals nothing.
+const UNEQUAL: u32 = 1 << 31;
+
+/// Working memory, all of it reused by the phases after the weld.
+pub(crate) struct WeldScratch<'a> {
+    /// Per vertex: its grid cell, or'd with [`UNEQUAL`], and a hash of its attributes; per cell,
+    /// where its corners start, and the next free place.
+    cells: &'a mut [u32],
+    hashes: &'a mut [u32],
+    starts: &'a mut [u32],
+    cursors: &'a mut [u32],
+    /// Per corner, in cell order: its position, and (corner, vertex or [`NONE`] when the vertex is
+    /// [`UNEQUAL`], representative corner).
+    positions: &'a mut [Vec3],
+    entries: &'a mut [[u32; 3]],
+    /// Per corner: its representative, then per representative its welded number.
+    representative: &'a mut [u32],
+    number: &'a mut [u32],
+    /// Pending parts of a cell, as (first, last) entry: last, as little of it is used (the
+    /// phases after the weld find the pages before it already touched).
+    stack: &'a mut [[u32; 2]],
+}
+
+impl<'a> WeldScratch<'a> {
+    /// Takes the scratch for `vertex_count` vertices and `corner_count` corners.
+    pub fn take(arena: &mut Arena<'a>, vertex_count: usize, corner_count: usize) -> Result<Self, Error> {
+        Ok(WeldScratch {
+            cells: arena.take(vertex_count)?,
+            hashes: arena.take(vertex_count)?,
+            starts: arena.take(GRID_CELLS + 1)?,
+            cursors: arena.take(GRID_CELLS)?,
+            positions: arena.take(corner_count)?,
+            entries: arena.take(corner_count)?,
+            representative: arena.take(corner_count)?,
+            number: arena.take(corner_count)?,
+            stack: arena.take(corner_count)?,
+        })
+    }
+}
+
+/// Replaces the vertex of every corner in `corners` (indices already checked) by the number of its
+/// welded vertex, numbered in order of first use; writes, per welded vertex, the vertex it reads its
+/// attributes from to `source` and mikktspace.c's index for it (`4 * face + corner` of the corner
+/// that represents it) to `values`. Returns the number of welded vertices.
+pub(crate) fn weld(
+    attributes: &Attributes,
+    threads: u32,
+    corners: &mut [u32],
+    source: &mut [u32],
+    values: &mut [u32],
+    scratch: WeldScratch,
+) -> usize {
+    let WeldScratch {
+        cells,
+        hashes,
+        starts,
+        cursors,
+        positions,
+        entries,
+        stack,
+        representative,
+        number,
+    } = scratch;
+    let corner_count = corners.len();
+    let position = |v: u32| attributes.position(v);
+
+    // 1. The bounding box.
+    let (min, max) = bounding_box(threads, corners, &position);
+    let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
+
+    // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads); how many
+    //    corners each cell holds.
+    let vertex_ranges = parallel::item_ranges(threads, cells.len(), 1);
+    let ends = vertex_ranges.ends();
+    let parts = parallel::split(&mut *cells, ends, 1).zip(parallel::split(&mut *hashes, ends, 1));
+    parallel::run_ranges(ends, parts, |first, (cells, hashes)| {
+        for (v, (cell, hash)) in (first..).zip(cells.iter_mut().zip(hashes.iter_mut())) {
+            let key = attributes.key(v as u32);
+            let unequal = if key.iter().any(|x| x.is_nan()) { UNEQUAL } else { 0 };
+            *cell = grid_cell(min[axis], max[axis], key[axis]) as u32 | unequal;
+            *hash = hash_of(&key.map(canonical_bits));
+        }
+    });
+    let (cells, hashes, corners_in) = (&*cells, &*hashes, &*corners);
+    starts.fill(0);
+    for &v in corners_in {
+        starts[(cells[v as usize] & !UNEQUAL) as usize + 1] += 1;
+    }
+    for k in 0..GRID_CELLS {
+        starts[k + 1] += starts[k];
+    }
+    cursors.copy_from_slice(&starts[..GRID_CELLS]);
+
+    // 3. Ranges of cells on separate threads: each worker gathers its cells' corners (in corner
+    //    order within a cell), then splits and welds every cell (`MergeVertsFast`).
+    let cell_ranges = cell_ranges(threads, starts);
+    let ends = cell_ranges.ends();
+    let bounds = Ranges::from_ends(ends.iter().map(|&cell| starts[cell] as usize));
+    let bounds = bounds.ends();
+    let first_cells = core::iter::once(0).chain(ends.iter().copied());
+    let parts = parallel::split(positions, bounds, 1)
+        .zip(parallel::split(entries, bounds, 1))
+        .zip(parallel::split(stack, bounds, 1))
+        .zip(parallel::split(cursors, ends, 1))
+        .zip(first_cells.zip(ends.iter().copied()));
+    parallel::run_ranges(
+        bounds,
+        parts,
+        |first, ((((positions, entries), stack), cursors), (first_cell, end_cell))| {
+            let owned = first_cell..end_cell;
+            for (c, &v) in corners_in.iter().enumerate() {
+                let cell = cells[v as usize];
+                let k = (cell & !UNEQUAL) as usize;
+                if !owned.contains(&k) {
+                    continue;
+                }
+                let cursor = &mut cursors[k - first_cell];
+                let at = *cursor as usize - first;
+                *cursor += 1;
+                positions[at] = position(v);
+                let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
+                entries[at] = [c as u32, vertex, c as u32];
+            }
+            for k in owned {
+                let cell = starts[k] as usize - first..starts[k + 1] as usize - first;
+                if cell.len() > 1 {
+                    let equal = Equality { attributes, hashes };
+                    split_and_weld(&equal, &mut positions[cell.clone()], &mut entries[cell], stack);
+                }
+            }
+        },
+    );
+
+    // 4. Number the welded vertices in order of first use.
+    for &[corner, _, first] in entries.iter() {
+        representative[corner as usize] = first;
+    }
+    number.fill(NONE);
+    let mut count = 0u32;
+    for c in 0..corner_count {
+        let first = representative[c] as usize;
+        if number[first] == NONE {
+            number[first] = count;
+            // `first` has not been renumbered yet: either it is `c`, or it lies ahead.
+            source[count as usize] = corners[first];
+            values[count as usize] = (4 * (first / 3) + first % 3) as u32;
+            count += 1;
+        }
+        corners[c] = number[first];
+    }
+    count as usize
+}
+
+/// The box mikktspace.c's `if ... else if` updates find, from the first corner's position: a
+/// corner lowers the minimum or raises the maximum where it compares past them, so a `NaN` moves
+/// nothing and a `NaN` in the first corner stays; of equal values (a -0 and a +0) the first stays.
+/// Ranges of corners on separate threads, each from its first value that is not `NaN`, joined in
+/// order with the same strict comparisons: the same box.
+fn bounding_box(threads: u32, corners: &[u32], position: &(impl Fn(u32) -> Vec3 + Sync)) -> (Vec3, Vec3) {
+    let ranges = parallel::item_ranges(threads, corners.len(), 3);
+    let ends = ranges.ends();
+    let mut boxes = [[[f32::NAN; 3]; 2]; parallel::MAX_RANGES];
+    let starts = core::iter::once(0).chain(ends.iter().copied());
+    let parts = starts.zip(ends).zip(boxes.iter_mut());
+    parallel::run_ranges(ends, parts, |_, ((start, &end), [min, max])| {
+        for &v in &corners[start..end] {
+            let p = position(v);
+            for axis in 0..3 {
+                if min[axis].is_nan() {
+                    (min[axis], max[axis]) = (p[axis], p[axis]);
+                } else if min[axis] > p[axis] {
+                    min[axis] = p[axis];
+                } else if max[axis] < p[axis] {
+                    max[axis] = p[axis];
+                }
+            }
+        }
+    });
+    let [mut min, mut max] = boxes[0];
+    for [range_min, range_max] in &boxes[1..ends.len()] {
+        for axis in 0..3 {
+            if min[axis] > range_min[axis] {
+                min[axis] = range_min[axis];
+            }
+            if max[axis] < range_max[axis] {
+                max[axis] = range_max[axis];
+            }
+        }
+    }
+    let first = position(corners[0]);
+    for axis in 0..3 {
+        if first[axis].is_nan() {
+            (min[axis], max[axis]) = (first[axis], first[axis]);
+        }
+    }
+    (min, max)
+}
+
+/// The ranges of grid cells the workers take, about equal in corners.
+fn cell_ranges(threads: u32, starts: &[u32]) -> Ranges {
+    let corner_count = starts[GRID_CELLS] as usize;
+    let targets = parallel::ranges(threads, corner_count / 3);
+    let count = targets.ends().len();
+    let mut previous = 0;
+    Ranges::from_ends(targets.ends().iter().enumerate().filter_map(|(i, &t)| {
+        // The last range ends the grid; an empty one is dropped.
+        let end = if i + 1 == count {
+            GRID_CELLS
+        } else {
+            starts.partition_point(|&s| (s as usize) < 3 * t).min(GRID_CELLS)
+        };
+        (end > previous).then(|| {
+            previous = end;
+            end
+        })
+    }))
+}
+
+/// A multiplicative hash of the eight canonical floats.
+fn hash_of(bits: &[u32; 8]) -> u32 {
+    let mut h = 0u64;
+    for &b in bits {
+        h = (h ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+    (h >> 32) as u32
+}
+
+/// The bits of `x`, with -0 as +0 so that values equal under `==` have equal bits.
+#[inline(always)]
+fn canonical_bits(x: f32) -> u32 {
+    if x == 0.0 {
+        0
+    } else {
+        x.to_bits()
+    }
+}
+
+/// `MergeVertsFast` on one grid cell, its recursion on `stack` (a cell can split hundreds deep;
+/// pending parts are disjoint and hold two entries or more, so with the partition's pairs the
+/// stack needs as many slots as the cell has entries).
+fn split_and_weld(equal: &Equality, positions: &mut [Vec3], entries: &mut [[u32; 3]], stack: &mut [[u32; 2]]) {
+    stack[0] = [0, entries.len() as u32 - 1];
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let [left, right] = stack[top].map(|x| x as usize);
+        let part = &mut positions[left..=right];
+        let mut min = part[0];
+        let mut max = min;
+        for p in &part[1..] {
+            for axis in 0..3 {
+                if min[axis] > p[axis] {
+                    min[axis] = p[axis];
+                }
+                if max[axis] < p[axis] {
+                    max[axis] = p[axis];
+                }
+            }
+        }
+        let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
+        let separator = 0.5 * (max[axis] + min[axis]);
+        if !separator.is_finite() {
+            // mikktspace.c gives up on this part: none of its corners weld.
+            continue;
+        }
+        if separator >= max[axis] || separator <= min[axis] {
+            weld_run(equal, &mut entries[left..=right]);
+            continue;
+        }
+        // Pending parts lie outside this one and hold two entries or more: the slots past them
+        // have room for the pairs.
+        let pairs = &mut stack[top..];
+        let (below_end, above_start) = partition(part, &mut entries[left..=right], axis, separator, pairs);
+        if below_end > 0 {
+            stack[top] = [left as u32, (left + below_end) as u32];
+            top += 1;
+        }
+        if above_start < part.len() - 1 {
+            stack[top] = [(left + above_start) as u32, right as u32];
+            top += 1;
+        }
+    }
+}
+
+/// The C's two-sided partition of `positions` (and `entries` alongside) around `separator` on
+/// `axis`, swap for swap. Its scans swap the i-th entry at or above the separator, counted from the
+/// left, with the i-th below it, counted from the right, until the two cross: exactly the entries
+/// on the wrong side of the boundary `k` (the number below), paired in order. Finding those pairs
+/// in straight passes avoids the scans' unpredictable branches. `pairs` needs half as many slots
+/// as there are entries, plus one. Returns the last position of the lower part (0 when it holds one
+/// entry or none, which need no welding) and the first position of the upper part.
+fn partition(
+    positions: &mut [Vec3],
+    entries: &mut [[u32; 3]],
+    axis: usize,
+    separator: f32,
+    pairs: &mut [[u32; 2]],
+) -> (usize, usize) {
+    let below = |p: &Vec3| p[axis] < separator;
+    let k = positions.iter().filter(|p| below(p)).count();
+    let mut swaps = 0;
+    for (i, p) in positions[..k].iter().enumerate() {
+        pairs[swaps][0] = i as u32;
+        swaps += usize::from(!below(p));
+    }
+    let mut from_right = 0;
+    for (i, p) in positions.iter().enumerate().skip(k).rev() {
+        pairs[from_right][1] = i as u32;
+        from_right += usize::from(below(p));
+    }
+    for &[l, r] in &pairs[..swaps] {
+        positions.swap(l as usize, r as usize);
+        entries.swap(l as usize, r as usize);
+    }
+    (k.saturating_sub(1), k)
+}
+
+/// Which vertices compare equal in all eight floats (neither has a `NaN`: those are
+/// [`UNEQUAL`]): the same vertex, or equal hashes and equal attributes.
+struct Equality<'a> {
+    attributes: &'a Attributes<'a>,
+    hashes: &'a [u32],
+}
+
+impl Equality<'_> {
+    fn equal(&self, a: u32, b: u32) -> bool {
+        let key = |v: u32| self.attributes.key(v).map(canonical_bits);
+        a == b || (self.hashes[a as usize] == self.hashes[b as usize] && key(a) == key(b))
+    }
+}
+
+/// The final step on a part whose widest extent is one value: each corner takes as representative
+/// the first corner before it, in the part's order, equal to it in all eight floats.
+fn weld_run(equality: &Equality, part: &mut [[u32; 3]]) {
+    /// Up to this many corners (a vertex's few corners, the usual case) the C's own search is
+    /// cheaper than sorting.
+    const SEARCH_LIMIT: usize = 16;
+    let first_vertex = part.iter().map(|e| e[1]).find(|&v| v != NONE);
+    if part.iter().all(|e| e[1] == NONE || Some(e[1]) == first_vertex) {
+        // One vertex's corners (and unequal ones, which stay alone): all equal the first.
+        if let Some(first) = part.iter().find(|e| e[1] != NONE).map(|e| e[0]) {
+            for entry in part.iter_mut().filter(|e| e[1] != NONE) {
+                entry[2] = first;
+            }
+        }
+        return;
+    }
+    // Each corner takes the first equal one before it among `run`, in place order.
+    let take_first_equal = |run: &mut [[u32; 3]]| {
+        for at in 1..run.len() {
+            let vertex = run[at][1];
+            if vertex == NONE {
+                continue;
+            }
+            if let Some(first) = run[..at].iter().find(|e| e[1] != NONE && equality.equal(e[1], vertex)) {
+                run[at][2] = first[0];
+            }
+        }
+    };
+    if part.len() <= SEARCH_LIMIT {
+        take_first_equal(part);
+        return;
+    }
+    // The part's order is not needed after this: sort it by hash, then by place, so that equal
+    // corners lie in one run of a hash (usually alone there), first to last in place order.
+    for (at, entry) in part.iter_mut().enumerate() {
+        entry[2] = at as u32;
+    }
+    let hash = |e: &[u32; 3]| (e[1] != NONE).then(|| equality.hashes[e[1] as usize]);
+    part.sort_unstable_by_key(|e| (e[1] == NONE, hash(e), e[2]));
+    for entry in part.iter_mut() {
+        entry[2] = entry[0];
+    }
+    // Unequal corners each make a run of their own.
+    for run in part.chunk_by_mut(|a, b| a[1] != NONE && hash(a) == hash(b)) {
+        take_first_equal(run);
+    }
+}
+
+/// The axis mikktspace.c splits along: y if strictly widest, else z if wider than x, else x.
+fn widest_axis(extent: Vec3) -> usize {
+    if extent[1] > extent[0] && extent[1] > extent[2] {
+        1
+    } else if extent[2] > extent[0] {
+        2
+    } else {
+        0
+    }
+}
+
+/// `FindGridCell`: the cell of `value` along an axis spanning `min..max`, with the float-to-int
+/// conversion of x86-64 (`cvttss2si`: `NaN` and out-of-range values become `INT_MIN`, cell 0).
+fn grid_cell(min: f32, max: f32, value: f32) -> usize {
+    let index = GRID_CELLS as f32 * ((value - min) / (max - min));
+    if !(-2_147_483_648.0..2_147_483_648.0).contains(&index) {
+        return 0;
+    }
+    let index = index as i32;
+    if index >= GRID_CELLS as i32 {
+        GRID_CELLS - 1
+    } else if index < 0 {
+        0
+    } else {
+        index as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_cells_stay_in_the_grid() {
+        for (min, max, v) in [
+            (0.0f32, 1.0, 1.0),
+            (0.0, 1.0, 0.0),
+            (0.0, 0.0, 0.0),
+            (f32::NAN, 1.0, 0.5),
+            (-1e30, 1e30, 1e30),
+            (0.0, 1.0, 2.0),
+            (0.0, 1.0, -2.0),
+            (0.0, f32::INFINITY, 1.0),
+            (0.0, 2.0, 2.0),
+            (0.0, 2.0, 1.9999999),
+        ] {
+            let cell = grid_cell(min, max, v);
+            assert!(cell < GRID_CELLS, "{min} {max} {v} -> {cell}");
+        }
+    }
+
+    #[test]
+    fn the_bounding_box_is_the_one_pass_box_on_any_thread_count() {
+        // The C's loop, on one thread.
+        let one_pass = |points: &[Vec3]| {
+            let (mut min, mut max) = (points[0], points[0]);
+            for p in &points[1..] {
+                for axis in 0..3 {
+                    if min[axis] > p[axis] {
+                        min[axis] = p[axis];
+                    } else if max[axis] < p[axis] {
+                        max[axis] = p[axis];
+                    }
+                }
+            }
+            (min, max)
+        };
+        let mut rng = crate::kernel::test_rng::TestRng(0x5EED);
+        for case in 0..40 {
+            // Few distinct values, so that ties (a -0 against a +0) and NaN meet every range.
+            let all = [0.0f32, -0.0, 1.0, f32::NAN, -1.0, 2.5, -3.0, 0.5];
+            // Half the cases with the extremes signed zeros (minimum) and 1 (maximum) only.
+            let values = if case % 2 == 0 { &all[..4] } else { &all[..] };
+            let points: Vec<Vec3> = (0..300)
+                .map(|i| {
+                    let pick = |rng: &mut crate::kernel::test_rng::TestRng| values[rng.below(values.len())];
+                    let p = [pick(&mut rng), pick(&mut rng), pick(&mut rng)];
+                    // Some cases start with a NaN, some have no NaN before the last range.
+                    match (case % 4, i) {
+                        (0, 0) => [f32::NAN, p[1], -0.0],
+                        (1, _) if i < 200 => p.map(|x| if x.is_nan() { 0.0 } else { x }),
+                        _ => p,
+                    }
+                })
+                .collect();
+            let corners: Vec<u32> = (0..points.len() as u32).rev().collect();
+            let ordered: Vec<Vec3> = corners.iter().map(|&v| points[v as usize]).collect();
+            let expected = one_pass(&ordered);
+            let bits = |(min, max): (Vec3, Vec3)| (min.map(f32::to_bits), max.map(f32::to_bits));
+            for threads in [1, 2, 8] {
+                let found = bounding_box(threads, &corners, &|v: u32| points[v as usize]);
+                assert_eq!(bits(found), bits(expected), "case {case}, threads={threads}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_run_welds_each_corner_to_the_first_equal_one() {
+        // Vertices 0 and 1 are equal (+0 against -0), 2 differs, 3 is unequal (NONE in entries).
+        let positions = [[0.0f32, 0.0, 0.0]; 4];
+        let normals = [[0.0f32, 0.0, 1.0], [0.0, -0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]];
+        let texcoords = [[0.5f32, 0.5], [0.5, 0.5], [0.25, 0.5], [0.5, f32::NAN]];
+        let mesh = crate::Mesh::new(&positions[..], &normals[..]).with_texcoords(&texcoords[..]);
+        let attributes = Attributes {
+            mesh: &mesh,
+            flip_v: false,
+        };
+        let hashes: Vec<u32> = (0..4)
+            .map(|v| hash_of(&attributes.key(v).map(canonical_bits)))
+            .collect();
+        let equality = Equality {
+            attributes: &attributes,
+            hashes: &hashes,
+        };
+        let mut part = [
+            [10, 1, 10],
+            [11, NONE, 11],
+            [12, 0, 12],
+            [13, 2, 13],
+            [14, 2, 14],
+            [15, 1, 15],
+        ];
+        weld_run(&equality, &mut part);
+        assert_eq!(part.map(|e| e[2]), [10, 11, 10, 13, 13, 10]);
+        // One vertex's corners all take the first; the sorting path agrees with the search.
+        let mut one = [[20, 2, 20], [21, NONE, 21], [22, 2, 22]];
+        weld_run(&equality, &mut one);
+        assert_eq!(one.map(|e| e[2]), [20, 21, 20]);
+        let vertex_of = |c: u32| [1, NONE, 0, 2, 2][c as usize % 5];
+        let mut long: Vec<[u32; 3]> = (0..40u32).rev().map(|c| [c, vertex_of(c), c]).collect();
+        weld_run(&equality, &mut long);
+        for &[c, vertex, first] in &long {
+            let equal = |d: u32| match (vertex_of(d), vertex) {
+                (NONE, _) | (_, NONE) => d == c,
+                (a, b) => (a == 2) == (b == 2),
+            };
+            let expected = (0..40u32).rev().find(|&d| equal(d)).unwrap();
+            assert_eq!(first, expected, "corner {c}");
+        }
+    }
+}
