@@ -9,28 +9,26 @@ pub const TBASIS_INDEX_U16: u32 = 1;
 /// `index_type`: 32-bit indices.
 pub const TBASIS_INDEX_U32: u32 = 2;
 
-/// `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
+/// `method`: the original listing (Lengyel 2001): each triangle adds its unnormalized dP/du.
 pub const TBASIS_METHOD_LENGYEL: u32 = 1;
-/// `method` (the default): each triangle's tangent projected into the vertex's tangent plane,
-/// normalized and weighted by the corner angle measured in that plane, in mikktspace.c's
-/// arithmetic: per vertex, mikktspace.c's frame for the vertex's first corner wherever the vertex's
-/// triangles and normal are clean (see the README's "Methods").
+/// `method` (the default, except with policy LEGACY: there the listing's, LENGYEL): each
+/// triangle's tangent in the vertex's tangent plane, weighted by the
+/// corner angle, in mikktspace.c's arithmetic; mikktspace.c's per-vertex frame on clean meshes
+/// (README, "Methods", says where exactly).
 pub const TBASIS_METHOD_ANGLE: u32 = 2;
 /// `method`: unit face tangents weighted by triangle area.
 pub const TBASIS_METHOD_AREA: u32 = 3;
 /// `method`: unit face tangents with equal weights (per-face averaging).
 pub const TBASIS_METHOD_UNIFORM: u32 = 4;
-/// `method`: exactly what mikktspace.c's `genTangSpaceDefault` hands to `setTSpaceBasic`, float
-/// for float, per corner (`tbasis_generate_corners`): the tangents almost every normal map is
-/// baked against. Needs `texcoords`. Its default policy (0) is LEGACY, which is exactly
-/// mikktspace.c, including what it writes for degenerate and non-finite input; SKIP and INHERIT
-/// differ only where mikktspace.c writes a non-finite, zero or non-unit tangent or one not
-/// perpendicular to the normal, and there write a finite unit tangent perpendicular to it.
-/// `tbasis_generate` gives each vertex its first corner's frame.
+/// `method`: exactly mikktspace.c's `genTangSpaceDefault`, per corner (`tbasis_generate_corners`;
+/// `tbasis_generate` gives each vertex its first corner's frame). Needs `texcoords`. Its default
+/// policy (0) is LEGACY: exactly mikktspace.c; SKIP and INHERIT replace only the frames
+/// mikktspace.c leaves unusable (README, "MikkTSpace, bit for bit").
 pub const TBASIS_METHOD_MIKKTSPACE: u32 = 5;
 
-/// `degenerate_policy`: exactly the listing (or, with method MIKKTSPACE, exactly mikktspace.c),
-/// bit for bit, including its inf/NaN.
+/// `degenerate_policy`: exactly the listing (method LENGYEL, or 0) or mikktspace.c (method
+/// MIKKTSPACE), bit for bit, inf/NaN included; any other method with it is
+/// `TBASIS_ERROR_NO_LEGACY_FORM`.
 pub const TBASIS_DEGENERATE_LEGACY: u32 = 1;
 /// `degenerate_policy`: degenerate triangles contribute nothing; vertices left without a tangent
 /// get the fallback frame built from their normal.
@@ -45,9 +43,11 @@ pub const TBASIS_DEGENERATE_REJECT: u32 = 4;
 /// as for `v' = 1 - v`, so `w` matches what those conventions expect.
 pub const TBASIS_FLAG_FLIP_V: u32 = 1;
 
-/// The method a `method` value names; 0 is the default (`TBASIS_METHOD_ANGLE`).
-pub fn method_of(code: u32) -> Option<Method> {
+/// The method a `method` value names beside the `degenerate_policy` value `policy`: 0 is the
+/// default, the listing's (`TBASIS_METHOD_LENGYEL`) with policy LEGACY, else `TBASIS_METHOD_ANGLE`.
+pub fn method_of(code: u32, policy: u32) -> Option<Method> {
     Some(match code {
+        0 if policy == TBASIS_DEGENERATE_LEGACY => Method::Lengyel,
         0 => Method::DEFAULT,
         TBASIS_METHOD_LENGYEL => Method::Lengyel,
         TBASIS_METHOD_ANGLE => Method::Angle,

@@ -58,8 +58,8 @@ pub struct tbasis_options {
     pub degenerate_policy: u32,
     /// `TBASIS_FLAG_*` bits; unknown bits are an error.
     pub flags: u32,
-    /// Upper bound on threads; 0 or 1: the calling thread only. Meshes get one worker per 32768
-    /// vertices at most; results are bit-identical whatever the value.
+    /// Upper bound on threads; 0 or 1: the calling thread only. Every method uses one worker per
+    /// 16384 triangles at most; results are bit-identical whatever the value.
     pub threads: u32,
     /// UV and position shape quality (1 = equilateral, 0 = collapsed) below which a triangle is
     /// degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
@@ -253,7 +253,7 @@ fn options_of(options: Option<tbasis_options>) -> Result<Options, Failure> {
     let Some(o) = options else {
         return Ok(Options::default());
     };
-    let method = method_of(o.method).ok_or(Failure::Status(TBASIS_ERROR_UNKNOWN_METHOD))?;
+    let method = method_of(o.method, o.degenerate_policy).ok_or(Failure::Status(TBASIS_ERROR_UNKNOWN_METHOD))?;
     let policy = policy_of(o.degenerate_policy, method).ok_or(Failure::Status(TBASIS_ERROR_UNKNOWN_POLICY))?;
     if o.flags & !TBASIS_FLAG_FLIP_V != 0 {
         return Err(Failure::Status(TBASIS_ERROR_UNKNOWN_FLAGS));
@@ -409,15 +409,10 @@ unsafe fn caller_scratch<'a>(
 /// index (`index_count` elements), or per vertex when `mesh->indices` is NULL (`vertex_count`).
 ///
 /// With `TBASIS_METHOD_MIKKTSPACE` each corner gets exactly mikktspace.c's frame for it. The
-/// per-vertex methods give each corner its vertex's frame, except at a mirror fold (a vertex used
-/// by triangles of both UV orientations), where each corner gets the frame of its own side:
-///
-/// - a corner gets exactly the bits `tbasis_generate` writes for its vertex;
-/// - except at a mirror fold whose vertex frame was measured (from one side's sum: its first
-///   corner's side, unless the other sums twice as long): there a corner of a non-degenerate triangle on the other side gets the frame of that
-///   side's own sum, with that side's `w`, when the sum passes the test the vertex's passed;
-/// - so corners of degenerate triangles, all corners of a fold vertex that inherited its frame or
-///   fell back, and (policy LEGACY, which has no sides) every corner get their vertex's frame.
+/// per-vertex methods give each corner exactly the bits `tbasis_generate` writes for its vertex,
+/// except at a mirror fold (a vertex used by non-degenerate triangles of both UV orientations):
+/// there a corner of a non-degenerate triangle on the side the vertex's frame does not come from
+/// gets that side's own frame and `w` (README, "Degenerate-UV policies").
 ///
 /// Needs the same scratch as `tbasis_generate` (`tbasis_scratch_size`), allocates nothing more
 /// per corner, and gives the same `report`; `threads` changes no bit.
@@ -651,7 +646,8 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 /// - `TBASIS_METHOD_MIKKTSPACE`, with `T = C / 3` triangles:
 ///   `57*C + 65*T + 4*V + 4*max(2*V + 2, C) + max(40*C + 8*V + 16415, 147*T + 33) + 39` (about
 ///   132 bytes per corner; the second `max` is the largest phase's memory: the weld's, or in most
-///   indexed meshes, from about `(8*V + 16382) / 9` corners, grouping's), 0 when `V` is 0.
+///   indexed meshes, from about `(8*V + 16382) / 9` corners, grouping's), 0 when `V` is 0; with
+///   policy REJECT at least `29*V + 3`, in which the degenerate test runs first.
 ///
 /// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
 /// `options` may be NULL (the defaults).
@@ -688,24 +684,8 @@ pub extern "C" fn tbasis_status_string(status: tbasis_status) -> *const c_char {
 /// TBASIS_VERSION_PATCH`, equal to the header's `TBASIS_VERSION` when header and library match.
 #[no_mangle]
 pub extern "C" fn tbasis_version() -> u32 {
-    VERSION
+    tbasis::VERSION
 }
-
-const VERSION: u32 = {
-    const fn parse(text: &str) -> u32 {
-        let bytes = text.as_bytes();
-        let mut value = 0;
-        let mut i = 0;
-        while i < bytes.len() {
-            value = value * 10 + (bytes[i] - b'0') as u32;
-            i += 1;
-        }
-        value
-    }
-    parse(env!("CARGO_PKG_VERSION_MAJOR")) * 1_000_000
-        + parse(env!("CARGO_PKG_VERSION_MINOR")) * 1_000
-        + parse(env!("CARGO_PKG_VERSION_PATCH"))
-};
 
 /// `to_tangent_space` or `from_tangent_space`: normal, tangent, direction in; result out.
 type Transform = fn([f32; 3], [f32; 4], [f32; 3]) -> Result<[f32; 3], Error>;

@@ -20,7 +20,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use common::cases::{mirror_fold, quantized_uv_sphere, unit_quad, Case};
-use tbasis::{scratch_size_for, DegeneratePolicy, Error, Method, Options, Output, Report, StridedMut};
+use tbasis::{scratch_size_for, DegeneratePolicy, Error, ErrorKind, Method, Options, Output, Report, StridedMut};
 
 /// Counts the allocations of each thread, so that other tests running at the same time (and the
 /// test harness's own threads) neither add to a count nor hide one.
@@ -59,17 +59,16 @@ unsafe impl GlobalAlloc for Counting {
 static GLOBAL: Counting = Counting;
 
 /// Allocations `call` makes on this thread (with caller scratch and one thread, the library makes
-/// all of them here); it must return Ok.
-fn allocations_during(what: &str, call: impl FnOnce() -> Result<Report, Error>) -> usize {
+/// all of them here), and what it returned.
+fn allocations_during(call: impl FnOnce() -> Result<Report, Error>) -> (usize, Result<Report, Error>) {
     let before = allocations();
     let result = call();
     let after = allocations();
-    assert!(result.is_ok(), "{what}: {result:?}");
-    after - before
+    (after - before, result)
 }
 
-/// Allocations made by one call with caller scratch; the result must be Ok.
-fn allocations_during_call(case: &Case, options: &Options) -> usize {
+/// Allocations made by one call with caller scratch, and its result.
+fn allocations_during_call(case: &Case, options: &Options) -> (usize, Result<Report, Error>) {
     let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
     let mut bitangents = vec![[0.0f32; 3]; case.vertex_count()];
     let mesh = case.mesh();
@@ -78,26 +77,24 @@ fn allocations_during_call(case: &Case, options: &Options) -> usize {
         tangents: StridedMut::from_slice(&mut tangents),
         bitangents: Some(StridedMut::from_slice(&mut bitangents)),
     };
-    allocations_during(&case.name, || {
-        tbasis::generate_with_scratch(&mesh, options, &mut output, &mut scratch)
-    })
+    allocations_during(|| tbasis::generate_with_scratch(&mesh, options, &mut output, &mut scratch))
 }
 
-/// Allocations made by one per-corner call with caller scratch; the result must be Ok.
-fn allocations_during_corners_call(case: &Case, options: &Options) -> usize {
+/// Allocations made by one per-corner call with caller scratch, and its result.
+fn allocations_during_corners_call(case: &Case, options: &Options) -> (usize, Result<Report, Error>) {
     let mesh = case.mesh();
     let mut corners = vec![[0.0f32; 4]; mesh.corner_count()];
     let mut scratch = vec![0u8; scratch_size_for(&mesh, options).unwrap()];
     let mut tangents = StridedMut::from_slice(&mut corners);
-    allocations_during(&case.name, || {
-        tbasis::generate_corners_with_scratch(&mesh, options, &mut tangents, &mut scratch)
-    })
+    allocations_during(|| tbasis::generate_corners_with_scratch(&mesh, options, &mut tangents, &mut scratch))
 }
 
 #[test]
 fn caller_scratch_means_no_allocation() {
-    // The INHERIT cases need propagation, the mirror fold both handedness sums.
+    // The INHERIT cases need propagation, the mirror fold both handedness sums; REJECT refuses the
+    // sphere's degenerate pole triangles and computes the others.
     let cases = [unit_quad(), mirror_fold(), quantized_uv_sphere()];
+    let (mut refused, mut rejected, mut computed_under_reject) = (0, 0, 0);
     for case in &cases {
         for method in [
             Method::Lengyel,
@@ -110,23 +107,37 @@ fn caller_scratch_means_no_allocation() {
                 DegeneratePolicy::Legacy,
                 DegeneratePolicy::Skip,
                 DegeneratePolicy::Inherit,
+                DegeneratePolicy::Reject,
             ] {
                 let options = Options::default().with_method(method).with_policy(policy);
-                assert_eq!(
-                    allocations_during_call(case, &options),
-                    0,
-                    "{} {method:?} {policy:?}",
-                    case.name
-                );
-                assert_eq!(
-                    allocations_during_corners_call(case, &options),
-                    0,
-                    "{} {method:?} {policy:?} per corner",
-                    case.name
-                );
+                let what = format!("{} {method:?} {policy:?}", case.name);
+                let calls = [
+                    (allocations_during_call(case, &options), "per vertex"),
+                    (allocations_during_corners_call(case, &options), "per corner"),
+                ];
+                for ((made, result), output) in calls {
+                    assert_eq!(made, 0, "{what} {output}: allocated");
+                    match result.as_ref().map_err(Error::kind) {
+                        Ok(_) if policy == DegeneratePolicy::Reject => computed_under_reject += 1,
+                        Ok(_) => {}
+                        Err(ErrorKind::NoLegacyForm) => refused += 1,
+                        Err(ErrorKind::DegenerateUv) if policy == DegeneratePolicy::Reject => rejected += 1,
+                        Err(error) => panic!("{what} {output}: {error:?}"),
+                    }
+                }
             }
         }
     }
+    // Every path ran: refused options, REJECT's refusal and REJECT's computation.
+    assert_eq!(
+        refused,
+        cases.len() * 3 * 2,
+        "policy LEGACY with ANGLE, AREA and UNIFORM"
+    );
+    assert!(
+        rejected > 0 && computed_under_reject > 0,
+        "{rejected} {computed_under_reject}"
+    );
 }
 
 /// The C entry points with caller scratch allocate nothing either: the boundary's checks included.

@@ -89,7 +89,7 @@ fn options(
 ) -> PyResult<Options> {
     let plain = |status, message| status_error(py, status, message, Details::default());
     let chosen =
-        method_of(method).ok_or_else(|| plain(TBASIS_ERROR_UNKNOWN_METHOD, format!("unknown method {method}")))?;
+        method_of(method, policy).ok_or_else(|| plain(TBASIS_ERROR_UNKNOWN_METHOD, format!("unknown method {method}")))?;
     let policy = policy_of(policy, chosen).ok_or_else(|| {
         plain(
             TBASIS_ERROR_UNKNOWN_POLICY,

@@ -21,27 +21,6 @@ mod views;
 
 use pyo3::pymodule;
 
-/// The version of the `tbasis` crate linked in, `major * 1000000 + minor * 1000 + patch`.
-///
-/// The crate does not export its version: this is this package's, which is the crate's, since
-/// Cargo.toml requires exactly this version of it (the two must be changed together).
-const LIBRARY_VERSION: u32 = {
-    const fn parse(text: &str) -> u32 {
-        let bytes = text.as_bytes();
-        let (mut parts, mut part, mut i) = ([0u32; 3], 0, 0);
-        while i < bytes.len() {
-            match bytes[i] {
-                b'.' => part += 1,
-                // A pre-release or build suffix ends the numbers.
-                b'-' | b'+' => break,
-                digit => parts[part] = parts[part] * 10 + (digit - b'0') as u32,
-            }
-            i += 1;
-        }
-        parts[0] * 1_000_000 + parts[1] * 1000 + parts[2]
-    }
-    parse(env!("CARGO_PKG_VERSION"))
-};
 
 #[pymodule]
 mod _native {
@@ -61,7 +40,7 @@ mod _native {
         module.add("__version__", env!("CARGO_PKG_VERSION"))?;
         // The version of the library linked in, as `TBASIS_VERSION` of the C header gives it, so
         // that a test can check that the package's version follows the library's.
-        module.add("library_version", super::LIBRARY_VERSION)?;
+        module.add("library_version", tbasis::VERSION)?;
         Ok(())
     }
 }

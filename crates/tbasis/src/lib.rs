@@ -78,3 +78,24 @@ pub use kernel::options::{DegeneratePolicy, Method, Options, DEFAULT_DEGENERATE_
 pub use kernel::report::Report;
 pub use kernel::views::interleaved::VertexLayout;
 pub use kernel::views::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
+
+/// This crate's version, `major * 1000000 + minor * 1000 + patch`: the C library's
+/// `tbasis_version()` and the Python package's `library_version`.
+///
+/// ```
+/// assert_eq!(tbasis::VERSION / 1_000_000, env!("CARGO_PKG_VERSION_MAJOR").parse().unwrap());
+/// ```
+pub const VERSION: u32 = {
+    const fn parse(digits: &str) -> u32 {
+        let bytes = digits.as_bytes();
+        let (mut value, mut i) = (0, 0);
+        while i < bytes.len() {
+            value = value * 10 + (bytes[i] - b'0') as u32;
+            i += 1;
+        }
+        value
+    }
+    parse(env!("CARGO_PKG_VERSION_MAJOR")) * 1_000_000
+        + parse(env!("CARGO_PKG_VERSION_MINOR")) * 1_000
+        + parse(env!("CARGO_PKG_VERSION_PATCH"))
+};

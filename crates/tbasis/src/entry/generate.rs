@@ -156,15 +156,12 @@ fn footprint(scratch: &Option<&mut [u8]>) -> Option<Footprint> {
 /// `k` of triangle `t` (`mesh.corner_count()` elements).
 ///
 /// Method [`Method::Mikktspace`] gives exactly mikktspace.c's frame per corner. The per-vertex
-/// methods give each corner its vertex's frame, except at a mirror fold, where each corner gets the
-/// frame of its own side. Exactly: a corner gets the bits [`generate`] writes for its vertex, except
-/// where that vertex is a mirror fold whose frame was measured (from one side's sum, see the
-/// README's "Degenerate-UV policies"): there a corner of a non-degenerate triangle on the other
-/// side gets the frame of that side's own sum, with its `w`, when the sum passes the test the
-/// vertex's passed. Corners of
-/// degenerate triangles, of fold vertices that inherited or fell back, and all corners under
-/// policy LEGACY get their vertex's frame. Same scratch ([`scratch_size_for`]) and report as
-/// [`generate`]; `threads` changes no bit. On error nothing in `tangents` has been written.
+/// methods give each corner exactly the bits [`generate`] writes for its vertex, except at a
+/// mirror fold (a vertex used by non-degenerate triangles of both UV orientations): there a corner
+/// of a non-degenerate triangle on the side the vertex's frame does not come from gets that side's
+/// own frame and `w` (README, "Degenerate-UV policies"). Same scratch ([`scratch_size_for`]) and
+/// report as [`generate`]; `threads` changes no bit. On error nothing in `tangents` has been
+/// written.
 ///
 /// ```
 /// use tbasis::{generate_corners, Mesh, Options, StridedMut};

@@ -26,13 +26,9 @@ pub enum Method {
     Lengyel,
     /// Each triangle's tangent, projected into the vertex's tangent plane and normalized, weighted
     /// by the triangle's corner angle at the vertex measured in that plane, each term in
-    /// mikktspace.c's arithmetic (`EvalTspace`), with or without [`Options::flip_v`]. So on a clean
-    /// mesh a vertex gets exactly mikktspace.c's frame for its first corner: its triangles one
-    /// edge-connected fan, none degenerate or nearly so (UV shape quality at least 0.01), its
-    /// normal unit length to float precision and facing along their winding, no other vertex with
-    /// the same position, normal and texture coordinate, and at a mirror fold no side summing more
-    /// than twice as long as its first corner's (README, "Methods"). Elsewhere the scale-free
-    /// robust arithmetic and the vertex's own sums decide.
+    /// mikktspace.c's arithmetic (`EvalTspace`), with or without [`Options::flip_v`]: on a clean
+    /// mesh, exactly mikktspace.c's frame for the vertex's first corner (README, "Methods", states
+    /// where exactly). Elsewhere the scale-free robust arithmetic and the vertex's own sums decide.
     Angle,
     /// Unit face tangents weighted by triangle area.
     Area,
