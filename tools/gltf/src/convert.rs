@@ -15,7 +15,7 @@ use crate::buffers::Appender;
 use crate::document::{self, Buffer};
 use crate::io::{self, Asset, Kind};
 use crate::primitive::{self, Computed, Edit};
-use crate::select::{self, Plan, Source};
+use crate::select::{self, Key, Plan, Source};
 use crate::uri;
 
 /// How every file is processed.
@@ -48,7 +48,7 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     // Plan every primitive; identical ones are computed once and share the result.
     let mut sources: Vec<Source> = Vec::new();
     let mut users: Vec<Vec<(usize, usize)>> = Vec::new();
-    let mut by_key: HashMap<String, usize> = HashMap::new();
+    let mut by_key: HashMap<Key, usize> = HashMap::new();
     for m in 0..document::count(&asset.json, "meshes") {
         for p in 0..document::primitive_count(&asset.json, m) {
             match select::plan(&asset.json, m, p, settings.overwrite)? {
@@ -56,8 +56,7 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
                     .left
                     .push(format!("{}: {why}", primitive_name(&asset.json, m, p))),
                 Plan::Process(source) => {
-                    let key = format!("{:?}", source.key());
-                    let slot = *by_key.entry(key).or_insert_with(|| {
+                    let slot = *by_key.entry(source.key()).or_insert_with(|| {
                         sources.push(source);
                         users.push(Vec::new());
                         sources.len() - 1

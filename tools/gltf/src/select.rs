@@ -20,14 +20,26 @@ pub struct Source {
     pub targets: Vec<Vec<(String, usize)>>,
 }
 
-/// What makes two primitives' results equal: indices, attributes, targets, texture set.
-pub type Key<'a> = (Option<usize>, &'a [(String, usize)], &'a [Vec<(String, usize)>], usize);
+/// What makes two primitives' results equal: indices, attributes, targets, texture set. Owned: a
+/// map keeps it while its source moves on.
+#[derive(Debug, PartialEq, Eq, Hash)]
+pub struct Key {
+    indices: Option<usize>,
+    attributes: Vec<(String, usize)>,
+    targets: Vec<Vec<(String, usize)>>,
+    texcoord: usize,
+}
 
 impl Source {
     /// Identical keys read identical data and get identical results, so primitives that draw the
     /// same geometry with different materials share their new accessors.
-    pub fn key(&self) -> Key<'_> {
-        (self.indices, &self.attributes, &self.targets, self.texcoord)
+    pub fn key(&self) -> Key {
+        Key {
+            indices: self.indices,
+            attributes: self.attributes.clone(),
+            targets: self.targets.clone(),
+            texcoord: self.texcoord,
+        }
     }
 }
 
