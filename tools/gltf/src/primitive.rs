@@ -91,7 +91,7 @@ pub fn compute(source: &Source, json: &Value, buffers: &Buffers, options: &Optio
                     .sources
                     .get(v.wrapping_sub(vertex_count))
                     .map_or(v, |&s| s as usize);
-                frame_from_normal(normals[source])
+                tbasis::fallback_frame(normals[source])
             })
         })
         .collect();
@@ -275,42 +275,5 @@ fn byte_length(count: usize, size: usize) -> Result<usize, String> {
 fn write_le<T, const N: usize>(bytes: &mut [u8], values: impl IntoIterator<Item = T>, to_le: impl Fn(T) -> [u8; N]) {
     for (slot, value) in bytes.chunks_exact_mut(N).zip(values) {
         slot.copy_from_slice(&to_le(value));
-    }
-}
-
-/// A unit tangent perpendicular to `normal` (Duff et al. 2017), `w = 1`; `+x` when the normal
-/// has no direction.
-fn frame_from_normal(normal: [f32; 3]) -> [f32; 4] {
-    let length = normal.iter().map(|c| c * c).sum::<f32>().sqrt();
-    if !(length.is_finite() && length > 0.0) {
-        return [1.0, 0.0, 0.0, 1.0];
-    }
-    let [x, y, z] = normal.map(|c| c / length);
-    let sign = 1.0f32.copysign(z);
-    let a = -1.0 / (sign + z);
-    let b = x * y * a;
-    [1.0 + sign * x * x * a, sign * b, -sign * x, 1.0]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::frame_from_normal;
-
-    #[test]
-    fn frames_from_normals_are_unit_and_perpendicular() {
-        for n in [
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-            [0.3, -0.4, 0.1],
-            [1.0, 0.0, 0.0],
-            [0.0, 0.0, 0.0],
-        ] {
-            let t = frame_from_normal(n);
-            let length = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-            assert!((length - 1.0).abs() < 1e-6, "{n:?} -> {t:?}");
-            let dot = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-            assert!(dot.abs() < 1e-6, "{n:?} -> {t:?}");
-            assert_eq!(t[3], 1.0);
-        }
     }
 }
