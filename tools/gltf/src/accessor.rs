@@ -1,9 +1,9 @@
 //! Reading accessors: their elements as packed bytes (sparse substitutions applied), as floats,
 //! or as indices.
 
-use gltf::json::accessor::{ComponentType, Type};
-use gltf::json::validation::Checked;
-use gltf::json::Root;
+use serde_json::Value;
+
+use crate::document::{Accessor, BufferView, ComponentType, Sparse};
 
 /// Buffers as loaded (see [`crate::buffers::load`]).
 pub type Buffers = [Option<Vec<u8>>];
@@ -18,70 +18,69 @@ pub struct Layout {
 }
 
 impl Layout {
+    /// At most 16 bytes: a matrix is no layout.
     pub fn element_size(&self) -> usize {
         self.component.size() * self.components
     }
 }
 
 /// The layout of accessor `index`; matrices are refused (no vertex attribute or index is one).
-pub fn layout(root: &Root, index: usize) -> Result<Layout, String> {
-    let accessor = root
-        .accessors
-        .get(index)
-        .ok_or_else(|| format!("accessor {index} does not exist"))?;
-    let (Checked::Valid(component), Checked::Valid(kind)) = (&accessor.component_type, &accessor.type_) else {
-        return Err(format!("accessor {index}: invalid componentType or type"));
-    };
-    let components = match kind {
-        Type::Scalar => 1,
-        Type::Vec2 => 2,
-        Type::Vec3 => 3,
-        Type::Vec4 => 4,
-        _ => return Err(format!("accessor {index}: a matrix where vertex data was expected")),
-    };
+pub fn layout(json: &Value, index: usize) -> Result<Layout, String> {
+    layout_of(&Accessor::read(json, index)?, index)
+}
+
+fn layout_of(accessor: &Accessor, index: usize) -> Result<Layout, String> {
+    let components = accessor
+        .element_type
+        .vector_components()
+        .ok_or_else(|| format!("accessor {index}: a matrix where vertex data was expected"))?;
     Ok(Layout {
-        component: component.0,
+        component: accessor.component_type,
         components,
         normalized: accessor.normalized,
-        count: accessor.count.0 as usize,
+        count: accessor.count,
     })
 }
 
 /// The elements of accessor `index`, packed (no stride), with sparse substitutions applied.
-pub fn packed(root: &Root, buffers: &Buffers, index: usize) -> Result<(Layout, Vec<u8>), String> {
-    let layout = layout(root, index)?;
-    let accessor = &root.accessors[index];
+pub fn packed(json: &Value, buffers: &Buffers, index: usize) -> Result<(Layout, Vec<u8>), String> {
+    let accessor = Accessor::read(json, index)?;
+    let layout = layout_of(&accessor, index)?;
     let size = layout.element_size();
+    let what = format!("accessor {index}");
     let total = layout
         .count
         .checked_mul(size)
-        .ok_or_else(|| format!("accessor {index}: too large"))?;
+        .ok_or_else(|| format!("{what}: too large"))?;
     let mut out = match accessor.buffer_view {
         // No bufferView: zeros, unless sparse says otherwise.
         None => vec![0u8; total],
-        Some(view) => {
-            let view_index = view.value();
-            let view = &root.buffer_views[view_index];
-            let stride = view.byte_stride.map_or(size, |s| s.0);
-            let start = accessor.byte_offset.map_or(0, |o| o.0 as usize);
-            let bytes = view_bytes(root, buffers, view_index)?;
-            let needed = match layout.count {
-                0 => Some(0),
-                n => (n - 1).checked_mul(stride).and_then(|x| x.checked_add(start + size)),
+        Some(view_index) => {
+            let view = BufferView::read(json, view_index)?;
+            let stride = view.byte_stride.unwrap_or(size);
+            let start = accessor.byte_offset;
+            let bytes = view_bytes(&view, view_index, buffers)?;
+            // The end of the last element.
+            let end = match layout.count.checked_sub(1) {
+                None => Some(start),
+                Some(last) => last
+                    .checked_mul(stride)
+                    .and_then(|x| x.checked_add(start))
+                    .and_then(|x| x.checked_add(size)),
             }
-            .ok_or_else(|| format!("accessor {index}: too large"))?;
-            if needed > bytes.len() {
+            .ok_or_else(|| format!("{what}: too large"))?;
+            if end > bytes.len() {
                 return Err(format!(
-                    "accessor {index}: needs {needed} bytes of bufferView {view_index}, which has {}",
+                    "{what}: needs {end} bytes of bufferView {view_index}, which has {}",
                     bytes.len()
                 ));
             }
             if stride == size {
-                bytes[start..start + total].to_vec()
+                bytes[start..end].to_vec()
             } else {
                 let mut out = Vec::with_capacity(total);
-                for i in 0..layout.count {
-                    let at = start + i * stride;
+                for element in 0..layout.count {
+                    let at = start + element * stride;
                     out.extend_from_slice(&bytes[at..at + size]);
                 }
                 out
@@ -89,64 +88,67 @@ pub fn packed(root: &Root, buffers: &Buffers, index: usize) -> Result<(Layout, V
         }
     };
     if let Some(sparse) = &accessor.sparse {
-        apply_sparse(root, buffers, index, sparse, size, layout.count, &mut out)?;
+        apply_sparse(json, buffers, index, sparse, size, layout.count, &mut out)?;
     }
     Ok((layout, out))
 }
 
+/// Writes the substituted elements into `out`, `count` elements of `size` bytes.
 fn apply_sparse(
-    root: &Root,
+    json: &Value,
     buffers: &Buffers,
     index: usize,
-    sparse: &gltf::json::accessor::sparse::Sparse,
+    sparse: &Sparse,
     size: usize,
     count: usize,
     out: &mut [u8],
 ) -> Result<(), String> {
-    let n = sparse.count.0 as usize;
-    let Checked::Valid(index_type) = &sparse.indices.component_type else {
-        return Err(format!("sparse accessor {index}: invalid index componentType"));
-    };
-    let index_size = index_type.0.size();
-    let indices = view_bytes(root, buffers, sparse.indices.buffer_view.value())?;
-    let values = view_bytes(root, buffers, sparse.values.buffer_view.value())?;
-    let (index_start, value_start) = (
-        sparse.indices.byte_offset.0 as usize,
-        sparse.values.byte_offset.0 as usize,
-    );
+    let n = sparse.count;
+    let index_size = sparse.index_type.size();
+    let part_bytes = |view: usize| BufferView::read(json, view).and_then(|v| view_bytes(&v, view, buffers));
+    let indices = part_bytes(sparse.indices_view)?;
+    let values = part_bytes(sparse.values_view)?;
     let end = |start: usize, size: usize| n.checked_mul(size).and_then(|x| x.checked_add(start));
     let fits = |end: Option<usize>, len: usize| end.is_some_and(|end| end <= len);
-    if !fits(end(index_start, index_size), indices.len()) || !fits(end(value_start, size), values.len()) {
+    if !fits(end(sparse.indices_offset, index_size), indices.len())
+        || !fits(end(sparse.values_offset, size), values.len())
+    {
         return Err(format!(
             "sparse accessor {index}: its {n} indices or values run past their bufferViews"
         ));
     }
     for k in 0..n {
-        let at = index_start + k * index_size;
+        let at = sparse.indices_offset + k * index_size;
         let target = read_index(&indices[at..at + index_size]) as usize;
         if target >= count {
             return Err(format!(
                 "sparse accessor {index}: substitutes element {target} of {count}"
             ));
         }
-        let from = value_start + k * size;
+        let from = sparse.values_offset + k * size;
         out[target * size..(target + 1) * size].copy_from_slice(&values[from..from + size]);
     }
     Ok(())
 }
 
-/// The bytes of bufferView `index`, checked against its buffer.
-fn view_bytes<'a>(root: &Root, buffers: &'a Buffers, index: usize) -> Result<&'a [u8], String> {
-    let view = &root.buffer_views[index];
-    let buffer = view.buffer.value();
-    let bytes = buffers[buffer]
+/// The bytes of bufferView `view` (number `index`), checked against its buffer.
+fn view_bytes<'a>(view: &BufferView, index: usize, buffers: &'a Buffers) -> Result<&'a [u8], String> {
+    let buffer = view.buffer;
+    let bytes = buffers
+        .get(buffer)
+        .ok_or_else(|| format!("bufferView {index}: buffer {buffer} does not exist"))?
         .as_deref()
         .ok_or_else(|| format!("bufferView {index}: buffer {buffer} holds no data (a compression fallback)"))?;
-    let start = view.byte_offset.map_or(0, |o| o.0 as usize);
-    let end = start.saturating_add(view.byte_length.0 as usize);
-    bytes
-        .get(start..end)
-        .ok_or_else(|| format!("bufferView {index}: bytes {start}..{end} are past the end of buffer {buffer}"))
+    let start = view.byte_offset;
+    view.byte_length
+        .checked_add(start)
+        .and_then(|end| bytes.get(start..end))
+        .ok_or_else(|| {
+            format!(
+                "bufferView {index}: {} bytes from byte {start} are past the end of buffer {buffer}",
+                view.byte_length
+            )
+        })
 }
 
 /// One little-endian unsigned index of 1, 2 or 4 bytes.
@@ -161,8 +163,8 @@ fn read_index(bytes: &[u8]) -> u32 {
 
 /// Accessor `index` as `N` floats per element: floats as they are, normalized integers mapped
 /// to [0, 1] or [-1, 1], other integers (KHR_mesh_quantization) converted.
-pub fn floats<const N: usize>(root: &Root, buffers: &Buffers, index: usize) -> Result<Vec<[f32; N]>, String> {
-    let (layout, bytes) = packed(root, buffers, index)?;
+pub fn floats<const N: usize>(json: &Value, buffers: &Buffers, index: usize) -> Result<Vec<[f32; N]>, String> {
+    let (layout, bytes) = packed(json, buffers, index)?;
     if layout.components != N {
         return Err(format!(
             "accessor {index}: {} components per element, {N} expected",
@@ -172,16 +174,16 @@ pub fn floats<const N: usize>(root: &Root, buffers: &Buffers, index: usize) -> R
     let size = layout.component.size();
     let convert = |c: &[u8]| -> f32 {
         match (layout.component, layout.normalized) {
-            (ComponentType::F32, _) => f32::from_le_bytes([c[0], c[1], c[2], c[3]]),
-            (ComponentType::U8, true) => f32::from(c[0]) / 255.0,
-            (ComponentType::I8, true) => (f32::from(c[0] as i8) / 127.0).max(-1.0),
-            (ComponentType::U16, true) => f32::from(u16::from_le_bytes([c[0], c[1]])) / 65535.0,
-            (ComponentType::I16, true) => (f32::from(i16::from_le_bytes([c[0], c[1]])) / 32767.0).max(-1.0),
-            (ComponentType::U8, false) => f32::from(c[0]),
-            (ComponentType::I8, false) => f32::from(c[0] as i8),
-            (ComponentType::U16, false) => f32::from(u16::from_le_bytes([c[0], c[1]])),
-            (ComponentType::I16, false) => f32::from(i16::from_le_bytes([c[0], c[1]])),
-            (ComponentType::U32, _) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f32,
+            (ComponentType::Float, _) => f32::from_le_bytes([c[0], c[1], c[2], c[3]]),
+            (ComponentType::UnsignedByte, true) => f32::from(c[0]) / 255.0,
+            (ComponentType::Byte, true) => (f32::from(c[0] as i8) / 127.0).max(-1.0),
+            (ComponentType::UnsignedShort, true) => f32::from(u16::from_le_bytes([c[0], c[1]])) / 65535.0,
+            (ComponentType::Short, true) => (f32::from(i16::from_le_bytes([c[0], c[1]])) / 32767.0).max(-1.0),
+            (ComponentType::UnsignedByte, false) => f32::from(c[0]),
+            (ComponentType::Byte, false) => f32::from(c[0] as i8),
+            (ComponentType::UnsignedShort, false) => f32::from(u16::from_le_bytes([c[0], c[1]])),
+            (ComponentType::Short, false) => f32::from(i16::from_le_bytes([c[0], c[1]])),
+            (ComponentType::UnsignedInt, _) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f32,
         }
     };
     Ok(bytes
@@ -191,15 +193,10 @@ pub fn floats<const N: usize>(root: &Root, buffers: &Buffers, index: usize) -> R
 }
 
 /// Accessor `index` as indices (unsigned byte, short or int scalars).
-pub fn indices(root: &Root, buffers: &Buffers, index: usize) -> Result<Vec<u32>, String> {
-    let (layout, bytes) = packed(root, buffers, index)?;
-    let size = layout.component.size();
-    let unsigned = matches!(
-        layout.component,
-        ComponentType::U8 | ComponentType::U16 | ComponentType::U32
-    );
-    if layout.components != 1 || !unsigned {
+pub fn indices(json: &Value, buffers: &Buffers, index: usize) -> Result<Vec<u32>, String> {
+    let (layout, bytes) = packed(json, buffers, index)?;
+    if layout.components != 1 || !layout.component.is_index() {
         return Err(format!("accessor {index}: indices must be unsigned scalars"));
     }
-    Ok(bytes.chunks_exact(size).map(read_index).collect())
+    Ok(bytes.chunks_exact(layout.component.size()).map(read_index).collect())
 }

@@ -5,24 +5,17 @@ use std::path::Path;
 
 use serde_json::{json, Value};
 
+use crate::document::{self, Buffer};
 use crate::uri;
 
-/// `target` of a bufferView holding vertex attributes.
-pub const ARRAY_BUFFER: u32 = 34962;
-/// `target` of a bufferView holding indices.
-pub const ELEMENT_ARRAY_BUFFER: u32 = 34963;
-
 /// Every buffer's bytes, from the GLB's binary chunk, a data URI or a file beside the document.
-pub fn load(
-    root: &gltf::json::Root,
-    json: &Value,
-    mut glb_bin: Option<Vec<u8>>,
-    dir: &Path,
-) -> Result<Vec<Option<Vec<u8>>>, String> {
-    let mut out = Vec::with_capacity(root.buffers.len());
-    for (i, buffer) in root.buffers.iter().enumerate() {
-        let length = buffer.byte_length.0 as usize;
-        let bytes = match buffer.uri.as_deref() {
+pub fn load(json: &Value, mut glb_bin: Option<Vec<u8>>, dir: &Path) -> Result<Vec<Option<Vec<u8>>>, String> {
+    let count = document::count(json, "buffers");
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let buffer = Buffer::read(json, i)?;
+        let length = buffer.byte_length;
+        let bytes = match buffer.uri {
             None if i == 0 && glb_bin.is_some() => {
                 let bin = glb_bin.take().unwrap_or_default();
                 if bin.len() < length {
@@ -102,9 +95,20 @@ impl Appender {
     /// Appends a bufferView of `length` zero bytes (4-byte aligned, as vertex attributes need)
     /// and returns its index and the bytes to fill in place; `stride` is written for vertex data
     /// whose elements are padded.
-    pub fn view_mut(&mut self, length: usize, stride: Option<usize>, target: u32) -> (usize, &mut [u8]) {
+    pub fn view_mut(
+        &mut self,
+        length: usize,
+        stride: Option<usize>,
+        target: u64,
+    ) -> Result<(usize, &mut [u8]), String> {
         let offset = self.bytes.len();
-        self.bytes.resize((offset + length).next_multiple_of(4), 0);
+        // The buffer's new end must fit too: `end` adds it up unchecked.
+        let padded_end = offset
+            .checked_add(length)
+            .and_then(|end| end.checked_next_multiple_of(4))
+            .filter(|&end| self.base.checked_add(end).is_some())
+            .ok_or_else(|| format!("{length} more bytes do not fit in a buffer"))?;
+        self.bytes.resize(padded_end, 0);
         let mut view = json!({
             "buffer": self.buffer,
             "byteOffset": self.base + offset,
@@ -115,10 +119,10 @@ impl Appender {
         }
         view["target"] = json!(target);
         self.views.push(view);
-        (
+        Ok((
             self.first_view + self.views.len() - 1,
             &mut self.bytes[offset..offset + length],
-        )
+        ))
     }
 
     /// Appends an accessor and returns its index.

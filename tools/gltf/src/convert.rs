@@ -12,9 +12,10 @@ use tbasis::Options;
 
 use crate::args::Job;
 use crate::buffers::Appender;
+use crate::document::{self, Buffer};
 use crate::io::{self, Asset, Kind};
 use crate::primitive::{self, Computed, Edit};
-use crate::select::{self, Plan, Source};
+use crate::select::{self, Key, Plan, Source};
 use crate::uri;
 
 /// How every file is processed.
@@ -47,16 +48,15 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     // Plan every primitive; identical ones are computed once and share the result.
     let mut sources: Vec<Source> = Vec::new();
     let mut users: Vec<Vec<(usize, usize)>> = Vec::new();
-    let mut by_key: HashMap<String, usize> = HashMap::new();
-    for (m, mesh) in asset.root.meshes.iter().enumerate() {
-        for p in 0..mesh.primitives.len() {
-            match select::plan(&asset.json, m, p, settings.overwrite) {
+    let mut by_key: HashMap<Key, usize> = HashMap::new();
+    for m in 0..document::count(&asset.json, "meshes") {
+        for p in 0..document::primitive_count(&asset.json, m) {
+            match select::plan(&asset.json, m, p, settings.overwrite)? {
                 Plan::Leave(why) => outcome
                     .left
                     .push(format!("{}: {why}", primitive_name(&asset.json, m, p))),
                 Plan::Process(source) => {
-                    let key = format!("{:?}", source.key());
-                    let slot = *by_key.entry(key).or_insert_with(|| {
+                    let slot = *by_key.entry(source.key()).or_insert_with(|| {
                         sources.push(source);
                         users.push(Vec::new());
                         sources.len() - 1
@@ -68,12 +68,13 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     }
 
     let computed = compute_all(&asset, &sources, settings)?;
+    let original_buffers = document::count(&asset.json, "buffers");
     let mut grown = None;
     if !computed.is_empty() {
         grown = append(&mut asset, &sources, &users, &computed, &mut outcome)?;
     }
-    let side_file = finish_buffers(&mut asset, &job.output)?;
-    rebase_uris(&mut asset, &job.output)?;
+    let side_file = finish_buffers(&mut asset, original_buffers, &job.output)?;
+    rebase_uris(&mut asset, original_buffers, &job.output)?;
     let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
     if let Some(path) = side_file {
         let added = asset.buffers.last().and_then(Option::as_deref).unwrap_or_default();
@@ -120,7 +121,7 @@ fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result
     let work = || loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         let Some(source) = sources.get(k) else { break };
-        let result = primitive::compute(source, &asset.root, &asset.buffers, &options)
+        let result = primitive::compute(source, &asset.json, &asset.buffers, &options)
             .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)));
         *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
     };
@@ -150,19 +151,18 @@ fn append(
     computed: &[Computed],
     outcome: &mut Outcome,
 ) -> Result<Option<Grown>, String> {
-    let (buffer, base) = data_buffer(asset);
-    let mut appender = Appender::new(buffer, base, asset.root.buffer_views.len(), asset.root.accessors.len());
+    let (buffer, old_length) = data_buffer(asset)?;
+    let base = old_length.next_multiple_of(4);
+    let mut appender = Appender::new(
+        buffer,
+        base,
+        document::count(&asset.json, "bufferViews"),
+        document::count(&asset.json, "accessors"),
+    );
     let mut edits: Vec<Edit> = Vec::with_capacity(sources.len());
     for (source, computed) in sources.iter().zip(computed) {
-        let edit = primitive::edit(
-            source,
-            computed,
-            &asset.json,
-            &asset.root,
-            &asset.buffers,
-            &mut appender,
-        )
-        .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)))?;
+        let edit = primitive::edit(source, computed, &asset.json, &asset.buffers, &mut appender)
+            .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)))?;
         outcome.repaired_corners += computed.report.repaired_corners;
         outcome.vertices_added += edit.vertices_added;
         edits.push(edit);
@@ -175,31 +175,34 @@ fn append(
     }
     let length = appender.end();
     let bytes = appender.append_json(&mut asset.json);
-    Ok(place(asset, buffer, base, length, bytes))
+    Ok(place(asset, buffer, old_length, length, bytes))
 }
 
-/// The buffer the new data goes into, and where in it: the end of the GLB's own buffer, or a new
+/// The buffer the new data goes into, and its length so far: the GLB's own buffer, or a new
 /// buffer (its URI is chosen when the file is written).
-fn data_buffer(asset: &Asset) -> (usize, usize) {
-    let glb_buffer = asset.kind == Kind::Glb && asset.root.buffers.first().is_some_and(|b| b.uri.is_none());
-    if glb_buffer {
-        let length = asset.root.buffers[0].byte_length.0 as usize;
-        (0, length.next_multiple_of(4))
-    } else {
-        (asset.root.buffers.len(), 0)
+fn data_buffer(asset: &Asset) -> Result<(usize, usize), String> {
+    if asset.kind == Kind::Glb && document::count(&asset.json, "buffers") > 0 {
+        let first = Buffer::read(&asset.json, 0)?;
+        if first.uri.is_none() {
+            return Ok((0, first.byte_length));
+        }
     }
+    Ok((document::count(&asset.json, "buffers"), 0))
 }
 
-/// New data for the GLB's own buffer: it goes at byte `base`, after the old bytes (written after
-/// them, not copied onto them).
-type Grown = (usize, Vec<u8>);
+/// New data for the GLB's own buffer, written after its old bytes and their padding (not copied
+/// onto them).
+struct Grown {
+    old_length: usize,
+    bytes: Vec<u8>,
+}
 
 /// Stores the new data in the buffer `data_buffer` chose: a new buffer, or the GLB's own, whose
 /// new data is returned.
-fn place(asset: &mut Asset, buffer: usize, base: usize, length: usize, bytes: Vec<u8>) -> Option<Grown> {
+fn place(asset: &mut Asset, buffer: usize, old_length: usize, length: usize, bytes: Vec<u8>) -> Option<Grown> {
     if buffer < asset.buffers.len() {
         asset.json["buffers"][buffer]["byteLength"] = json!(length);
-        Some((base, bytes))
+        Some(Grown { old_length, bytes })
     } else {
         let list = asset
             .json
@@ -218,9 +221,10 @@ fn place(asset: &mut Asset, buffer: usize, base: usize, length: usize, bytes: Ve
 
 /// Gives a buffer the tool added a place: the GLB's binary chunk when it is the first buffer of a
 /// .glb, a data URI in a .gltf whose buffers are all embedded, else a file beside the output,
-/// which is returned (its bytes are the last buffer's).
-fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<PathBuf>, String> {
-    let added = asset.root.buffers.len();
+/// which is returned (its bytes are the last buffer's). The document had `original_buffers`.
+fn finish_buffers(asset: &mut Asset, original_buffers: usize, output: &Path) -> Result<Option<PathBuf>, String> {
+    // The index of the buffer the tool added, if it added one.
+    let added = original_buffers;
     if asset.buffers.len() == added {
         return Ok(None);
     }
@@ -228,11 +232,8 @@ fn finish_buffers(asset: &mut Asset, output: &Path) -> Result<Option<PathBuf>, S
         return Ok(None);
     }
     let embedded = asset.kind == Kind::Gltf
-        && asset
-            .root
-            .buffers
-            .iter()
-            .all(|b| b.uri.as_deref().is_some_and(|u| u.starts_with("data:")));
+        && (0..original_buffers)
+            .all(|i| Buffer::read(&asset.json, i).is_ok_and(|b| b.uri.is_some_and(|u| u.starts_with("data:"))));
     if embedded {
         let bytes = asset.buffers[added].as_deref().unwrap_or_default();
         asset.json["buffers"][added]["uri"] = json!(uri::encode_data(bytes));
@@ -274,15 +275,14 @@ fn uris(json: &Value) -> impl Iterator<Item = &str> {
 }
 
 /// A document written to another folder must still find its files: relative URIs are rewritten
-/// to lead from the output's folder to the same files.
-fn rebase_uris(asset: &mut Asset, output: &Path) -> Result<(), String> {
+/// to lead from the output's folder to the same files; buffers from `original_buffers` on are the
+/// tool's, already beside the output.
+fn rebase_uris(asset: &mut Asset, original_buffers: usize, output: &Path) -> Result<(), String> {
     let in_dir = std::fs::canonicalize(&asset.dir).map_err(|e| format!("{}: {e}", asset.dir.display()))?;
     let out_dir = canonical_dir(output)?;
     if in_dir == out_dir {
         return Ok(());
     }
-    // Buffers the tool added already name files beside the output.
-    let original_buffers = asset.root.buffers.len();
     for key in ["buffers", "images"] {
         // `get_mut`: indexing would add the key with a null value.
         let Some(items) = asset.json.get_mut(key).and_then(Value::as_array_mut) else {
@@ -327,10 +327,6 @@ fn glb_bin<'a>(asset: &'a Asset, grown: Option<&'a Grown>) -> Option<Vec<&'a [u8
             let length = first["byteLength"].as_u64()? as usize;
             vec![&data[..length.min(data.len())]]
         }
-        Some((base, bytes)) => {
-            let old = asset.root.buffers[0].byte_length.0 as usize;
-            debug_assert_eq!(*base, old.next_multiple_of(4));
-            vec![&data[..old], io::glb_padding(old), bytes]
-        }
+        Some(Grown { old_length, bytes }) => vec![&data[..*old_length], io::glb_padding(*old_length), bytes],
     })
 }

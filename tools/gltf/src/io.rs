@@ -1,14 +1,14 @@
-//! Reading a .gltf or .glb into its JSON, a validated typed view and its buffers; writing one
-//! through a temporary file in the destination folder, renamed into place.
+//! Reading a .gltf or .glb into its JSON and its buffers; writing one through a temporary file in
+//! the destination folder, renamed into place.
 
 use std::fs;
 use std::io::Write;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use gltf::json::validation::Validate;
 use serde_json::Value;
 
-use crate::buffers;
+use crate::{buffers, document};
 
 /// Required extensions whose data the tool cannot decode: compressed geometry.
 const UNDECODABLE: [(&str, &str); 3] = [
@@ -26,10 +26,8 @@ pub enum Kind {
 /// A document as read.
 pub struct Asset {
     pub kind: Kind,
-    /// The whole document: edited, then written back.
+    /// The whole document, checked ([`document::check`]): edited, then written back.
     pub json: Value,
-    /// The same document, typed and validated: what the tool reads.
-    pub root: gltf::json::Root,
     /// Each buffer's bytes; `None` for a fallback buffer that holds none (meshopt).
     pub buffers: Vec<Option<Vec<u8>>>,
     /// The folder relative URIs resolve against.
@@ -39,43 +37,81 @@ pub struct Asset {
 /// Reads and checks `path`; the error says what is wrong (the caller names the file).
 pub fn read(path: &Path) -> Result<Asset, String> {
     let mut bytes = fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
-    let (kind, json_bytes, bin) = if bytes.starts_with(b"glTF") {
-        let glb = gltf::Glb::from_slice(&bytes).map_err(|e| format!("not a valid GLB file: {e}"))?;
-        let json = glb.json.into_owned();
-        let start = |chunk: &[u8]| chunk.as_ptr() as usize - bytes.as_ptr() as usize;
-        let bin = glb.bin.map(|bin| start(&bin)..start(&bin) + bin.len());
+    let (kind, json, bin) = if bytes.starts_with(b"glTF") {
+        let (json_range, bin_range) = glb_chunks(&bytes).map_err(|e| format!("not a valid GLB file: {e}"))?;
+        let json = parse_json(&bytes[json_range])?;
         // The binary chunk keeps the file's allocation, cut down to it: tens of MB not copied.
-        let bin = bin.map(|range| {
+        let bin = bin_range.map(|range| {
             bytes.truncate(range.end);
             bytes.drain(..range.start);
             bytes
         });
         (Kind::Glb, json, bin)
     } else {
-        (Kind::Gltf, bytes, None)
+        (Kind::Gltf, parse_json(&bytes)?, None)
     };
-    let json: Value = serde_json::from_slice(&json_bytes).map_err(|e| format!("broken JSON: {e}"))?;
-    if !json.is_object() {
-        return Err("broken JSON: the document is not an object".into());
-    }
     check_required_extensions(&json)?;
-    let mut root: gltf::json::Root =
-        serde_json::from_value(json.clone()).map_err(|e| format!("not a glTF 2.0 document: {e}"))?;
-    // The typed view knows few extensions; the ones that matter were checked above.
-    root.extensions_required.clear();
-    validate(&root)?;
+    document::check(&json)?;
     let dir = match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let buffers = buffers::load(&root, &json, bin, &dir)?;
+    let buffers = buffers::load(&json, bin, &dir)?;
     Ok(Asset {
         kind,
         json,
-        root,
         buffers,
         dir,
     })
+}
+
+fn parse_json(bytes: &[u8]) -> Result<Value, String> {
+    let json: Value = serde_json::from_slice(bytes).map_err(|e| format!("broken JSON: {e}"))?;
+    if !json.is_object() {
+        return Err("broken JSON: the document is not an object".into());
+    }
+    Ok(json)
+}
+
+/// Where a .glb's JSON chunk and binary chunk (if any) are. GLB 2.0: a 12-byte header (magic,
+/// version, length), then chunks of an 8-byte header (length, type) and their bytes; the JSON
+/// chunk first, a binary one next. Chunks after those two are ignored.
+fn glb_chunks(bytes: &[u8]) -> Result<(Range<usize>, Option<Range<usize>>), String> {
+    let word = |at: usize| -> Option<u32> {
+        let word = bytes.get(at..at.checked_add(4)?)?;
+        Some(u32::from_le_bytes(word.try_into().ok()?))
+    };
+    let (Some(version), Some(length)) = (word(4), word(8)) else {
+        return Err("its header is cut short".into());
+    };
+    if version != 2 {
+        return Err(format!("GLB version {version}, not 2"));
+    }
+    if !(12..=bytes.len()).contains(&(length as usize)) {
+        return Err(format!("its header gives {length} bytes, the file has {}", bytes.len()));
+    }
+    // The range of the bytes of a chunk at `at` that must be of type `kind`.
+    let chunk = |at: usize, kind: &[u8; 4], name: &str| -> Result<Range<usize>, String> {
+        let start = at.checked_add(8).filter(|&start| start <= bytes.len());
+        let (Some(start), Some(length)) = (start, word(at)) else {
+            return Err(format!("its {name} chunk header is cut short"));
+        };
+        if &bytes[at + 4..start] != kind {
+            return Err(format!("no {name} chunk where one belongs"));
+        }
+        start
+            .checked_add(length as usize)
+            .filter(|&end| end <= bytes.len())
+            .map(|end| start..end)
+            .ok_or_else(|| format!("its {name} chunk of {length} bytes runs past the end of the file"))
+    };
+    let json = chunk(12, b"JSON", "JSON")?;
+    let bin = if json.end < bytes.len() {
+        Some(chunk(json.end, b"BIN\0", "binary")?)
+    } else {
+        None
+    };
+    Ok((json, bin))
 }
 
 fn check_required_extensions(json: &Value) -> Result<(), String> {
@@ -91,25 +127,6 @@ fn check_required_extensions(json: &Value) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-/// The document's references and enumerations, as the `gltf` crate checks them.
-fn validate(root: &gltf::json::Root) -> Result<(), String> {
-    let mut errors = Vec::new();
-    root.validate(root, gltf::json::Path::new, &mut |path, error| {
-        errors.push(format!("{}: {error}", path()));
-    });
-    if errors.is_empty() {
-        return Ok(());
-    }
-    let more = errors.len().saturating_sub(3);
-    errors.truncate(3);
-    let tail = if more > 0 {
-        format!(" (and {more} more)")
-    } else {
-        String::new()
-    };
-    Err(format!("invalid glTF: {}{tail}", errors.join("; ")))
 }
 
 /// The header and JSON chunk of a .glb holding `json`, up to the header of a binary chunk of

@@ -8,6 +8,7 @@ mod args;
 mod batch;
 mod buffers;
 mod convert;
+mod document;
 mod io;
 mod primitive;
 mod select;

@@ -8,7 +8,8 @@ use tbasis::{copy_split_vertices, generate_corners, split_corners, Indices, Mesh
 use tbasis::{Strided, StridedMut};
 
 use crate::accessor::{self, Buffers, Layout};
-use crate::buffers::{Appender, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
+use crate::buffers::Appender;
+use crate::document::{ComponentType, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use crate::select::Source;
 
 /// Tangents for a primitive's vertices after the split.
@@ -19,8 +20,8 @@ pub struct Computed {
     pub tangents: Vec<[f32; 4]>,
     /// The new index of every corner, and the vertex each appended one copies.
     pub split: SeamSplit,
-    /// The index accessor's component type (5121, 5123 or 5125), `None` unindexed.
-    pub index_type: Option<u32>,
+    /// The index accessor's component type, `None` unindexed.
+    pub index_type: Option<ComponentType>,
     pub report: Report,
 }
 
@@ -35,14 +36,9 @@ pub struct Edit {
 }
 
 /// Computes the primitive's tangents per corner and splits its seams.
-pub fn compute(
-    source: &Source,
-    root: &gltf::json::Root,
-    buffers: &Buffers,
-    options: &Options,
-) -> Result<Computed, String> {
+pub fn compute(source: &Source, json: &Value, buffers: &Buffers, options: &Options) -> Result<Computed, String> {
     let read = |name: &str, index: usize| -> Result<Layout, String> {
-        accessor::layout(root, index).map_err(|e| format!("{name}: {e}"))
+        accessor::layout(json, index).map_err(|e| format!("{name}: {e}"))
     };
     let vertex_count = read("POSITION", source.position)?.count;
     if vertex_count == 0 {
@@ -55,15 +51,15 @@ pub fn compute(
             return Err(format!("{name} has {count} elements, POSITION {vertex_count}"));
         }
     }
-    let positions = accessor::floats::<3>(root, buffers, source.position).map_err(|e| format!("POSITION: {e}"))?;
-    let normals = accessor::floats::<3>(root, buffers, source.normal).map_err(|e| format!("NORMAL: {e}"))?;
+    let positions = accessor::floats::<3>(json, buffers, source.position).map_err(|e| format!("POSITION: {e}"))?;
+    let normals = accessor::floats::<3>(json, buffers, source.normal).map_err(|e| format!("NORMAL: {e}"))?;
     let texcoords =
-        accessor::floats::<2>(root, buffers, source.texcoord).map_err(|e| format!("texture coordinates: {e}"))?;
+        accessor::floats::<2>(json, buffers, source.texcoord).map_err(|e| format!("texture coordinates: {e}"))?;
     let (indices, index_type) = match source.indices {
         Some(index) => {
             let layout = read("indices", index)?;
-            let indices = accessor::indices(root, buffers, index).map_err(|e| format!("indices: {e}"))?;
-            (Some(indices), Some(layout.component.as_gl_enum()))
+            let indices = accessor::indices(json, buffers, index).map_err(|e| format!("indices: {e}"))?;
+            (Some(indices), Some(layout.component))
         }
         None => (None, None),
     };
@@ -95,7 +91,7 @@ pub fn compute(
                     .sources
                     .get(v.wrapping_sub(vertex_count))
                     .map_or(v, |&s| s as usize);
-                frame_from_normal(normals[source])
+                tbasis::fallback_frame(normals[source])
             })
         })
         .collect();
@@ -114,16 +110,15 @@ pub fn edit(
     source: &Source,
     computed: &Computed,
     json: &Value,
-    root: &gltf::json::Root,
     buffers: &Buffers,
     appender: &mut Appender,
 ) -> Result<Edit, String> {
     let total = computed.tangents.len();
-    let (view, bytes) = appender.view_mut(total * 16, None, ARRAY_BUFFER);
+    let (view, bytes) = appender.view_mut(byte_length(total, 16)?, None, ARRAY_BUFFER)?;
     write_le(bytes, computed.tangents.iter().flatten(), |f| f.to_le_bytes());
     let tangent = appender.accessor(json!({
         "bufferView": view,
-        "componentType": 5126,
+        "componentType": ComponentType::Float.code(),
         "count": total,
         "type": "VEC4",
     }));
@@ -144,7 +139,7 @@ pub fn edit(
         if let Some(&done) = copies.get(&index) {
             return Ok(done);
         }
-        let done = copy_attribute(json, root, buffers, index, computed.vertex_count, sources, appender)
+        let done = copy_attribute(json, buffers, index, computed.vertex_count, sources, appender)
             .map_err(|e| format!("{name}: {e}"))?;
         copies.insert(index, done);
         Ok(done)
@@ -164,7 +159,7 @@ pub fn edit(
                 .collect::<Result<Vec<_>, String>>()
         })
         .collect::<Result<Vec<_>, String>>()?;
-    let indices = Some(write_indices(computed, appender));
+    let indices = Some(write_indices(computed, appender)?);
     Ok(Edit {
         attributes,
         tangent,
@@ -202,19 +197,22 @@ fn object(value: &mut Value) -> &mut Map<String, Value> {
 /// A copy of vertex accessor `index` with the appended vertices, as a new accessor.
 fn copy_attribute(
     json: &Value,
-    root: &gltf::json::Root,
     buffers: &Buffers,
     index: usize,
     vertex_count: usize,
     sources: &[u32],
     appender: &mut Appender,
 ) -> Result<usize, String> {
-    let (layout, packed) = accessor::packed(root, buffers, index)?;
+    let (layout, packed) = accessor::packed(json, buffers, index)?;
     let size = layout.element_size();
     // Vertex attribute elements must start on 4-byte boundaries.
     let stride = size.next_multiple_of(4);
-    let total = vertex_count + sources.len();
-    let (view, data) = appender.view_mut(total * stride, (stride != size).then_some(stride), ARRAY_BUFFER);
+    let total = vertex_count.checked_add(sources.len()).ok_or("too many vertices")?;
+    let (view, data) = appender.view_mut(
+        byte_length(total, stride)?,
+        (stride != size).then_some(stride),
+        ARRAY_BUFFER,
+    )?;
     if stride == size {
         data[..packed.len()].copy_from_slice(&packed);
     } else {
@@ -226,7 +224,7 @@ fn copy_attribute(
     let old = &json["accessors"][index];
     let mut accessor = json!({
         "bufferView": view,
-        "componentType": layout.component.as_gl_enum(),
+        "componentType": layout.component.code(),
         "count": total,
         "type": old["type"],
     });
@@ -242,75 +240,40 @@ fn copy_attribute(
     Ok(appender.accessor(accessor))
 }
 
-/// The split indices as a new accessor, of the original type where every index fits it (the
-/// largest value of each type is primitive restart, never an index).
-fn write_indices(computed: &Computed, appender: &mut Appender) -> usize {
-    let total = computed.tangents.len();
-    let original = computed.index_type.unwrap_or(5125);
-    let component = [(5121, 255), (5123, 65535)]
+/// The split indices as a new accessor, of the original type where every index fits it.
+fn write_indices(computed: &Computed, appender: &mut Appender) -> Result<usize, String> {
+    let largest_index = computed.tangents.len().saturating_sub(1) as u64;
+    let original = computed.index_type.unwrap_or(ComponentType::UnsignedInt);
+    let component = [ComponentType::UnsignedByte, ComponentType::UnsignedShort]
         .into_iter()
-        .find(|&(kind, limit)| kind >= original && total <= limit)
-        .map_or(5125, |(kind, _)| kind);
+        .find(|kind| kind.size() >= original.size() && largest_index <= kind.max_index())
+        .unwrap_or(ComponentType::UnsignedInt);
     let indices = &computed.split.indices;
-    let size = match component {
-        5121 => 1,
-        5123 => 2,
-        _ => 4,
-    };
-    let (view, bytes) = appender.view_mut(indices.len() * size, None, ELEMENT_ARRAY_BUFFER);
-    match size {
-        1 => write_le(bytes, indices, |&i| [i as u8]),
-        2 => write_le(bytes, indices, |&i| (i as u16).to_le_bytes()),
+    let length = byte_length(indices.len(), component.size())?;
+    let (view, bytes) = appender.view_mut(length, None, ELEMENT_ARRAY_BUFFER)?;
+    match component {
+        ComponentType::UnsignedByte => write_le(bytes, indices, |&i| [i as u8]),
+        ComponentType::UnsignedShort => write_le(bytes, indices, |&i| (i as u16).to_le_bytes()),
         _ => write_le(bytes, indices, |&i| i.to_le_bytes()),
     }
-    appender.accessor(json!({
+    Ok(appender.accessor(json!({
         "bufferView": view,
-        "componentType": component,
+        "componentType": component.code(),
         "count": indices.len(),
         "type": "SCALAR",
-    }))
+    })))
+}
+
+/// The bytes of `count` elements of `size` bytes.
+fn byte_length(count: usize, size: usize) -> Result<usize, String> {
+    count
+        .checked_mul(size)
+        .ok_or_else(|| format!("{count} elements of {size} bytes are too many"))
 }
 
 /// Writes each value's `N` little-endian bytes one after the other.
 fn write_le<T, const N: usize>(bytes: &mut [u8], values: impl IntoIterator<Item = T>, to_le: impl Fn(T) -> [u8; N]) {
     for (slot, value) in bytes.chunks_exact_mut(N).zip(values) {
         slot.copy_from_slice(&to_le(value));
-    }
-}
-
-/// A unit tangent perpendicular to `normal` (Duff et al. 2017), `w = 1`; `+x` when the normal
-/// has no direction.
-fn frame_from_normal(normal: [f32; 3]) -> [f32; 4] {
-    let length = normal.iter().map(|c| c * c).sum::<f32>().sqrt();
-    if !(length.is_finite() && length > 0.0) {
-        return [1.0, 0.0, 0.0, 1.0];
-    }
-    let [x, y, z] = normal.map(|c| c / length);
-    let sign = 1.0f32.copysign(z);
-    let a = -1.0 / (sign + z);
-    let b = x * y * a;
-    [1.0 + sign * x * x * a, sign * b, -sign * x, 1.0]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::frame_from_normal;
-
-    #[test]
-    fn frames_from_normals_are_unit_and_perpendicular() {
-        for n in [
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-            [0.3, -0.4, 0.1],
-            [1.0, 0.0, 0.0],
-            [0.0, 0.0, 0.0],
-        ] {
-            let t = frame_from_normal(n);
-            let length = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-            assert!((length - 1.0).abs() < 1e-6, "{n:?} -> {t:?}");
-            let dot = t[0] * n[0] + t[1] * n[1] + t[2] * n[2];
-            assert!(dot.abs() < 1e-6, "{n:?} -> {t:?}");
-            assert_eq!(t[3], 1.0);
-        }
     }
 }
