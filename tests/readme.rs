@@ -132,7 +132,7 @@ fn readme_snippets_come_from_tested_files() {
         "tests/gltf_convention.rs",
         "tests/transform.rs",
         "crates/tbasis/src/lib.rs",
-        "crates/tbasis/src/generate.rs",
+        "crates/tbasis/src/entry/generate.rs",
         "c_tests/harness.c",
     ] {
         assert!(sources.contains(&expected), "no README snippet from {expected}");

@@ -52,6 +52,12 @@ fn expect_call(plan: &Plan, arena: &[u8], footprints: &Footprints) -> Expect {
         if !plan.threshold.is_finite() || plan.threshold < 0.0 {
             hard |= bit(TBASIS_ERROR_INVALID_THRESHOLD);
         }
+        // LEGACY reproduces the listing (LENGYEL) and mikktspace.c (MIKKTSPACE) only.
+        let legacy_forms = [TBASIS_METHOD_LENGYEL, TBASIS_METHOD_MIKKTSPACE];
+        let method = plan.resolved_method();
+        if plan.resolved_policy() == TBASIS_DEGENERATE_LEGACY && known(Field::Method, method) && !legacy_forms.contains(&method) {
+            hard |= bit(TBASIS_ERROR_NO_LEGACY_FORM);
+        }
     }
     let b = &plan.bufs;
     hard |= mesh_violations(plan, arena) | b[TAN].violations();

@@ -202,6 +202,8 @@ impl Plan {
     pub fn resolved_method(&self) -> u32 {
         match self.method {
             _ if self.options_null => TBASIS_METHOD_ANGLE,
+            // 0 is the listing's method with policy LEGACY, else ANGLE.
+            0 if self.policy == TBASIS_DEGENERATE_LEGACY => TBASIS_METHOD_LENGYEL,
             0 => TBASIS_METHOD_ANGLE,
             m => m,
         }

@@ -91,6 +91,15 @@ impl Pipeline {
         }
     }
 
+    /// The pipeline for a validated call on `mesh`, and the bytes of working memory it needs.
+    fn for_call(mesh: &Mesh, options: &Options) -> Result<(Pipeline, usize), Error> {
+        let pipeline = Pipeline::of(options);
+        let size = pipeline
+            .memory_bytes(options.degenerate_policy, mesh.vertex_count(), mesh.corner_count())
+            .ok_or(Error::SizeOverflow)?;
+        Ok((pipeline, size))
+    }
+
     /// Bytes of working memory the pipeline lays out for a call on `vertex_count` vertices and
     /// `corner_count` corners; `None` on overflow. MIKKTSPACE under REJECT first runs the
     /// per-vertex test for degenerate triangles in the same memory.
@@ -121,10 +130,7 @@ pub(crate) fn generate_into(
     validate::validate(mesh, options, output, footprint(&scratch))?;
     // 2. Working memory: the caller's scratch or a fresh zeroed allocation, laid out by the
     //    pipeline.
-    let pipeline = Pipeline::of(options);
-    let size = pipeline
-        .memory_bytes(options.degenerate_policy, mesh.vertex_count(), mesh.corner_count())
-        .ok_or(Error::SizeOverflow)?;
+    let (pipeline, size) = Pipeline::for_call(mesh, options)?;
     // 3. The pipeline computes and writes.
     with_memory(scratch, size, |memory| match pipeline {
         Pipeline::Listing => listing::generate(mesh, options, memory, output, report),
@@ -219,10 +225,7 @@ pub(crate) fn generate_corners_into(
     report: &mut Report,
 ) -> Result<(), Error> {
     validate::validate_corners(mesh, options, tangents, footprint(&scratch))?;
-    let pipeline = Pipeline::of(options);
-    let size = pipeline
-        .memory_bytes(options.degenerate_policy, mesh.vertex_count(), mesh.corner_count())
-        .ok_or(Error::SizeOverflow)?;
+    let (pipeline, size) = Pipeline::for_call(mesh, options)?;
     with_memory(scratch, size, |memory| match pipeline {
         Pipeline::Listing => listing::generate_corners(mesh, options, memory, tangents, report),
         Pipeline::PerVertex => per_vertex::generate_corners(mesh, options, memory, tangents, report),

@@ -53,6 +53,19 @@ impl Method {
     /// assert_eq!(Options::default().method, Method::DEFAULT);
     /// ```
     pub const DEFAULT: Method = Method::Angle;
+
+    /// Whether policy [`DegeneratePolicy::Legacy`] holds with this method: LENGYEL (the listing)
+    /// and MIKKTSPACE (mikktspace.c) have a legacy form to reproduce; the others do not.
+    ///
+    /// ```
+    /// use tbasis::Method;
+    ///
+    /// assert!(Method::Lengyel.has_legacy_form() && Method::Mikktspace.has_legacy_form());
+    /// assert!(!Method::Angle.has_legacy_form());
+    /// ```
+    pub fn has_legacy_form(self) -> bool {
+        matches!(self, Method::Lengyel | Method::Mikktspace)
+    }
 }
 
 /// What happens to triangles whose texture coordinates (or inputs) are degenerate.
@@ -336,8 +349,7 @@ impl Options {
                 threshold: self.degenerate_threshold,
             });
         }
-        let has_legacy_form = matches!(self.method, Method::Lengyel | Method::Mikktspace);
-        if self.degenerate_policy == DegeneratePolicy::Legacy && !has_legacy_form {
+        if self.degenerate_policy == DegeneratePolicy::Legacy && !self.method.has_legacy_form() {
             return Err(Error::NoLegacyForm { method: self.method });
         }
         Ok(())

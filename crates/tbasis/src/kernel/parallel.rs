@@ -15,7 +15,7 @@ use crate::kernel::mesh::Mesh;
 use crate::kernel::report::Report;
 
 /// Triangles each worker should have at least. Unit tests split small meshes too
-/// (`entry/thread_count_tests.rs`).
+/// (`entry/determinism_tests.rs`).
 pub(crate) const MIN_TRIANGLES_PER_WORKER: usize = if cfg!(test) { 8 } else { 16 * 1024 };
 
 /// At most this many ranges: beyond it another thread would not pay on any core count in use.
