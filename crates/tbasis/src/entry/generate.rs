@@ -290,5 +290,5 @@ pub fn scratch_size_for_counts(options: &Options, vertex_count: usize, corner_co
 /// assert_eq!(tbasis::scratch_size(usize::MAX), None);
 /// ```
 pub fn scratch_size(vertex_count: usize) -> Option<usize> {
-    crate::kernel::sums::bytes(vertex_count, 0)
+    crate::kernel::memory::vertex_arrays_bytes(vertex_count, 0)
 }

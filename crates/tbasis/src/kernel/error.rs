@@ -3,7 +3,7 @@
 
 use core::fmt;
 
-use crate::kernel::options::{DegeneratePolicy, Method};
+use crate::kernel::choices::{DegeneratePolicy, Method};
 use crate::kernel::report::Report;
 
 /// A buffer a call reads or writes, as errors name it.

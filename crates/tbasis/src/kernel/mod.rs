@@ -1,6 +1,6 @@
 //! The floor every pipeline stands on, imported by them and importing none of them.
 //!
-//! * The call's vocabulary: [`options`], [`report`], [`error`], and the caller's buffers, read and
+//! * The call's vocabulary: [`choices`], [`options`], [`report`], [`error`], and the caller's buffers, read and
 //!   written in place ([`views`], [`mesh`]).
 //! * Working memory, laid out by the code that uses it and sized by the same code ([`memory`],
 //!   with the per-vertex sums in [`sums`]), and threads ([`parallel`]).
@@ -10,6 +10,7 @@
 //!   fallback ([`frame`]), and the side a mirror-fold vertex takes ([`fold`]).
 
 pub(crate) mod arc_cosine;
+pub(crate) mod choices;
 pub(crate) mod degenerate;
 pub(crate) mod error;
 pub(crate) mod fold;

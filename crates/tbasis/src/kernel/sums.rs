@@ -1,6 +1,6 @@
 //! The per-vertex working arrays of the listing and the per-vertex methods: running sums and
-//! flags per vertex, and for policy INHERIT room for its adjacency, laid out in one call's memory
-//! ([`crate::kernel::memory`]).
+//! flags per vertex, and for policy INHERIT room for its adjacency (laid out by
+//! [`crate::kernel::memory::vertex_arrays`]).
 #![forbid(unsafe_code)]
 
 use core::ops::Range;
@@ -8,7 +8,6 @@ use core::ops::Range;
 use glam::Vec3;
 
 use crate::kernel::error::Error;
-use crate::kernel::memory::{bytes_of, Arena};
 use crate::kernel::mesh::{Mesh, Output, OutputPart};
 use crate::kernel::options::DegeneratePolicy;
 use crate::kernel::parallel;
@@ -78,16 +77,6 @@ impl VertexSums {
         let [x, y, z] = self.secondary;
         [x, y, z, -self.weight]
     }
-}
-
-/// Bytes the arrays for `vertex_count` vertices and `link_bytes` of adjacency take, as
-/// [`layout`] lays them out: `vertex_count * 29 + link_bytes + 3` (the 3 let the sums start at a
-/// 4-byte boundary wherever the memory begins), 0 for an empty mesh. `None` on overflow.
-pub(crate) fn bytes(vertex_count: usize, link_bytes: usize) -> Option<usize> {
-    if vertex_count == 0 {
-        return Some(0);
-    }
-    bytes_of(|arena| layout(arena, vertex_count, link_bytes).map(|_| ())).ok()
 }
 
 /// Bytes a per-vertex call with `policy` needs besides the sums and flags: policy INHERIT's
@@ -234,22 +223,6 @@ pub fn write_corner_frames(
         .collect()
 }
 
-/// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena`: the
-/// sums, the adjacency (right after them, so 4-byte aligned), the flags; the sums and flags zeroed.
-pub fn layout<'a>(arena: &mut Arena<'a>, vertex_count: usize, link_bytes: usize) -> Result<Scratch<'a>, Error> {
-    let sums: &mut [VertexSums] = arena.take(vertex_count)?;
-    let links = arena.take(link_bytes)?;
-    let flags: &mut [u8] = arena.take(vertex_count)?;
-    sums.fill(VertexSums::default());
-    flags.fill(0);
-    Ok(Scratch {
-        sums,
-        flags,
-        first: 0,
-        links: Links(links),
-    })
-}
-
 /// A vertex used by non-degenerate triangles of both UV orientations: a mirror fold.
 #[inline(always)]
 pub fn is_mirror_fold(flags: u8) -> bool {
@@ -262,57 +235,5 @@ pub(crate) fn count_flags(flags: &[u8], report: &mut Report) {
     for &f in flags {
         report.unreferenced_vertices += usize::from(f & flag::REFERENCED == 0);
         report.mirrored_vertices += usize::from(is_mirror_fold(f));
-    }
-}
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `layout` in memory of `size` bytes at byte offset `offset` of a buffer.
-    fn carve(buffer: &mut [u8], vertex_count: usize, link_bytes: usize) -> Result<usize, Error> {
-        let scratch = layout(&mut Arena::Carve(buffer), vertex_count, link_bytes)?;
-        let aligned = scratch.links.0.is_empty() || scratch.links.0.as_ptr() as usize % 4 == 0;
-        assert!(aligned, "adjacency not aligned");
-        Ok(scratch.links.0.len())
-    }
-
-    #[test]
-    fn the_size_is_enough_at_every_alignment_and_one_byte_less_is_not() {
-        for vertex_count in [1usize, 2, 7, 100] {
-            for link_bytes in [0, 4 * (2 * vertex_count + 9)] {
-                let size = bytes(vertex_count, link_bytes).unwrap();
-                assert_eq!(size, vertex_count * 29 + link_bytes + 3, "the documented formula");
-                let mut buffer = vec![0u8; size + 8];
-                for offset in 0..4 {
-                    assert_eq!(
-                        carve(&mut buffer[offset..offset + size], vertex_count, link_bytes),
-                        Ok(link_bytes)
-                    );
-                }
-                // With the worst alignment, one byte less must fail.
-                let worst = (0..4).find(|o| (buffer[*o..].as_ptr() as usize) % 4 == 1).unwrap();
-                assert!(carve(&mut buffer[worst..worst + size - 1], vertex_count, link_bytes).is_err());
-            }
-        }
-        assert_eq!(bytes(0, 0), Some(0));
-        assert_eq!(bytes(usize::MAX, 0), None);
-    }
-
-    #[test]
-    fn inherit_needs_its_adjacency_and_the_other_policies_nothing_more() {
-        for policy in [
-            DegeneratePolicy::Legacy,
-            DegeneratePolicy::Skip,
-            DegeneratePolicy::Reject,
-        ] {
-            assert_eq!(link_bytes(policy, 10, 30), Some(0));
-        }
-        let inherit = DegeneratePolicy::Inherit;
-        assert_eq!(link_bytes(inherit, 0, 30), Some(0));
-        // 4 bytes per entry: a start and a queue slot per vertex, one entry per corner.
-        assert_eq!(link_bytes(inherit, 10, 30), Some(4 * (2 * 10 + 30)));
-        let size = bytes(10, link_bytes(inherit, 10, 30).unwrap());
-        assert_eq!(size, Some(10 * 37 + 30 * 4 + 3));
-        assert_eq!(link_bytes(inherit, usize::MAX / 2, 30), None);
     }
 }

@@ -8,7 +8,7 @@
 use glam::Vec3;
 
 use crate::kernel::error::Error;
-use crate::kernel::memory::Arena;
+use crate::kernel::memory::{self, Arena};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType};
 use crate::kernel::options::Options;
 use crate::kernel::parallel;
@@ -19,7 +19,7 @@ use crate::kernel::views::strided::{Strided, StridedMut};
 /// Bytes of working memory a call needs: the per-vertex sums (`tan1`, `tan2`) and flags,
 /// `vertex_count * 29 + 3`. `None` on overflow.
 pub(crate) fn memory_bytes(vertex_count: usize) -> Option<usize> {
-    sums::bytes(vertex_count, 0)
+    memory::vertex_arrays_bytes(vertex_count, 0)
 }
 
 /// Writes every vertex's frame into `output`.
@@ -30,7 +30,7 @@ pub(crate) fn generate(
     output: &mut Output,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = sums::layout(&mut Arena::Carve(memory), mesh.vertex_count(), 0)?;
+    let mut scratch = memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0)?;
     run(mesh, options, &mut scratch, Some(output), report)
 }
 
@@ -42,7 +42,7 @@ pub(crate) fn generate_corners(
     tangents: &mut StridedMut<[f32; 4]>,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = sums::layout(&mut Arena::Carve(memory), mesh.vertex_count(), 0)?;
+    let mut scratch = memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0)?;
     run(mesh, options, &mut scratch, None, report)?;
     sums::write_corner_frames(mesh, options.threads, scratch.sums, tangents, |_, _| Ok(()))
 }

@@ -577,50 +577,6 @@ macro_rules! glam_views {
 
 glam_views!(glam::Vec2 => [f32; 2], glam::Vec3 => [f32; 3], glam::Vec3A => [f32; 3], glam::Vec4 => [f32; 4]);
 
-/// Types for which every byte pattern of their size is a valid value.
-///
-/// # Safety
-/// Implementors must be `repr(C)` or primitive, hold only `f32`/integers, and have no padding.
-pub unsafe trait Pod: Copy {}
-// SAFETY: three f32 + one f32 + three f32, repr(C), no padding.
-unsafe impl Pod for crate::kernel::sums::VertexSums {}
-// SAFETY: primitive numbers and arrays of them have no padding and no invalid bit patterns.
-unsafe impl Pod for u32 {}
-// SAFETY: as above.
-unsafe impl Pod for u8 {}
-// SAFETY: as above.
-unsafe impl Pod for f32 {}
-// SAFETY: as above.
-unsafe impl Pod for [f32; 3] {}
-// SAFETY: as above.
-unsafe impl Pod for [u32; 2] {}
-// SAFETY: as above.
-unsafe impl Pod for [u32; 3] {}
-// SAFETY: as above.
-unsafe impl Pod for [f32; 8] {}
-
-/// The first `count` elements of type `T` that fit in `bytes` after its first `T`-aligned address,
-/// and the bytes after them; `None` when they do not fit.
-///
-/// Lets caller-provided scratch serve as typed working memory without copying. The bytes before the
-/// aligned address are left unused; `scratch_size` budgets `align_of::<T>() - 1` bytes for them.
-pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T], &mut [u8])> {
-    if count == 0 {
-        // Nothing to align: an empty scratch fits at any address.
-        return Some((&mut [], bytes));
-    }
-    let head = bytes.as_ptr().align_offset(core::mem::align_of::<T>());
-    let typed_bytes = count.checked_mul(size_of::<T>())?;
-    if head.checked_add(typed_bytes)? > bytes.len() {
-        return None;
-    }
-    let (typed, rest) = bytes[head..].split_at_mut(typed_bytes);
-    // SAFETY: `typed` starts T-aligned and holds exactly `count * size_of::<T>()` bytes that this
-    // exclusive borrow owns; T is Pod, so whatever the bytes hold is a valid T.
-    let typed = unsafe { core::slice::from_raw_parts_mut(typed.as_mut_ptr().cast::<T>(), count) };
-    Some((typed, rest))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

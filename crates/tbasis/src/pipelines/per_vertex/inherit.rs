@@ -7,7 +7,7 @@ use crate::kernel::frame::orthonormalize;
 use crate::kernel::frame::VertexNormal;
 use crate::kernel::mesh::{Mesh, PerIndexType};
 use crate::kernel::sums::{flag, wide_links, Scratch, VertexSums};
-use crate::kernel::views::strided::{pod_prefix_mut, Pod};
+use crate::kernel::views::pod::{pod_prefix_mut, Pod};
 
 /// Spreads resolved tangents into unresolved vertices one ring at a time, until a ring resolves
 /// nothing; returns how many vertices were resolved.
@@ -275,7 +275,7 @@ fn settle(mesh: &Mesh, v: usize, gathered: Vec3) -> Option<Vec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::memory::Arena;
+    use crate::kernel::memory::{self, Arena};
     use crate::kernel::mesh::Indices;
     use crate::kernel::options::{DegeneratePolicy, Method, Options};
     use crate::kernel::parallel;
@@ -666,9 +666,9 @@ mod tests {
         assert!(wide.flags == expected_flags.as_slice(), "{what}, 8-byte entries: flags");
 
         if caller {
-            let size = sums::bytes(vertex_count, links).unwrap();
+            let size = memory::vertex_arrays_bytes(vertex_count, links).unwrap();
             let mut bytes = vec![0xA5u8; size + 1];
-            let mut scratch = sums::layout(&mut Arena::Carve(&mut bytes[1..]), vertex_count, links).unwrap();
+            let mut scratch = memory::vertex_arrays(&mut Arena::Carve(&mut bytes[1..]), vertex_count, links).unwrap();
             resolve_measured(&mesh, &options(1), &mut scratch, None, &mut Report::default()).unwrap();
             assert_eq!(
                 propagate(&mesh, &mut scratch),

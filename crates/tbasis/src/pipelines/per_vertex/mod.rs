@@ -18,24 +18,25 @@ pub(crate) mod inherit;
 pub(crate) mod resolve;
 
 use crate::kernel::error::Error;
-use crate::kernel::memory::Arena;
+use crate::kernel::memory::{self, Arena};
 use crate::kernel::mesh::{Mesh, Output, OutputPart};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
 use crate::kernel::report::Report;
 use crate::kernel::sums::{self, count_flags, Scratch};
+use crate::kernel::views::strided::StridedMut;
 use crate::kernel::{frame, parallel, simd};
 
 /// Bytes of working memory a call needs: the per-vertex sums and flags, and policy INHERIT's
 /// adjacency (`vertex_count * 29 + 3`, and for INHERIT `(2 * vertex_count + corner_count) * 4`
 /// more, or `* 8` beyond 32-bit counts). `None` on overflow.
 pub(crate) fn memory_bytes(policy: DegeneratePolicy, vertex_count: usize, corner_count: usize) -> Option<usize> {
-    sums::bytes(vertex_count, sums::link_bytes(policy, vertex_count, corner_count)?)
+    memory::vertex_arrays_bytes(vertex_count, sums::link_bytes(policy, vertex_count, corner_count)?)
 }
 
 /// The per-vertex arrays laid out in `memory` (at least [`memory_bytes`] long).
 fn scratch_in<'a>(mesh: &Mesh, policy: DegeneratePolicy, memory: &'a mut [u8]) -> Result<Scratch<'a>, Error> {
     let links = sums::link_bytes(policy, mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;
-    sums::layout(&mut Arena::Carve(memory), mesh.vertex_count(), links)
+    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links)
 }
 
 /// Writes every vertex's frame into `output`.
@@ -55,7 +56,7 @@ pub(crate) fn generate_corners(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
-    tangents: &mut crate::kernel::views::strided::StridedMut<[f32; 4]>,
+    tangents: &mut StridedMut<[f32; 4]>,
     report: &mut Report,
 ) -> Result<(), Error> {
     let mut scratch = scratch_in(mesh, options.degenerate_policy, memory)?;
