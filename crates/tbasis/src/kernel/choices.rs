@@ -24,7 +24,7 @@ pub enum Method {
     Lengyel,
     /// Each triangle's tangent, projected into the vertex's tangent plane and normalized, weighted
     /// by the triangle's corner angle at the vertex measured in that plane, each term in
-    /// mikktspace.c's arithmetic (`EvalTspace`), with or without [`Options::flip_v`]: on a clean
+    /// mikktspace.c's arithmetic (`EvalTspace`), with or without [`Options::flip_v`](crate::Options::flip_v): on a clean
     /// mesh, exactly mikktspace.c's frame for the vertex's first corner (README, "Methods", states
     /// where exactly). Elsewhere the scale-free robust arithmetic and the vertex's own sums decide.
     Angle,
@@ -90,7 +90,7 @@ impl Method {
 pub enum DegeneratePolicy {
     /// Exactly the listing (method LENGYEL) or mikktspace.c (method MIKKTSPACE), bit for bit,
     /// including the inf/NaN the listing writes on a zero UV determinant. The other methods have
-    /// no legacy form: with them this policy is refused ([`Error::NoLegacyForm`]).
+    /// no legacy form: with them this policy is refused ([`Error::NoLegacyForm`](crate::Error::NoLegacyForm)).
     Legacy,
     /// Degenerate triangles contribute nothing; a vertex left without a tangent gets a fallback
     /// frame built from its normal.
@@ -98,7 +98,7 @@ pub enum DegeneratePolicy {
     /// Like `Skip`, but a vertex left without a tangent first takes one from its neighbours across
     /// shared triangles, and falls back only when its whole connected region has none.
     Inherit,
-    /// Refuse the mesh with [`Error::DegenerateUv`], naming the first degenerate triangle.
+    /// Refuse the mesh with [`Error::DegenerateUv`](crate::Error::DegenerateUv), naming the first degenerate triangle.
     Reject,
 }
 
@@ -130,7 +130,7 @@ impl DegeneratePolicy {
     }
 }
 
-/// The default for [`Options::degenerate_threshold`].
+/// The default for [`Options::degenerate_threshold`](crate::Options::degenerate_threshold).
 ///
 /// A triangle's UV quality `q = 2*sqrt(3)*|det| / (|e0|^2 + |e1|^2 + |e2|^2)` is 1 for an
 /// equilateral triangle, about 0.87 for a grid's right triangle, and falls like `sqrt(3)/k` for a
