@@ -82,6 +82,7 @@ def test_every_class_is_a_tbasis_error_and_the_fitting_builtin() -> None:
         ("threshold_overflow", tbasis.InvalidOptionError, "degenerate_threshold inf is not a finite number >= 0"),
         ("threads", tbasis.InvalidOptionError, "threads must be between 0 and 2\\*\\*32 - 1, not -1"),
         ("threads_float", tbasis.InvalidOptionError, "threads must be an integer"),
+        ("legacy_without_legacy_form", tbasis.InvalidOptionError, "method Angle has no legacy form"),
         (
             "legacy_without_texcoords",
             tbasis.MissingTexcoordsError,
@@ -133,6 +134,9 @@ def test_bad_input_raises_and_writes_nothing(mesh: Mesh, case: str, error: type[
         options["threads"] = -1
     elif case == "threads_float":
         options["threads"] = 2.0
+    elif case == "legacy_without_legacy_form":
+        options["method"] = "angle"
+        options["policy"] = "legacy"
     elif case == "legacy_without_texcoords":
         arguments["texcoords"] = None
         options["policy"] = "legacy"
