@@ -6,8 +6,9 @@
 //! tangents. Texture coordinates are kept exactly as the file stores them: glTF with V pointing
 //! down, OBJ with V pointing up (see [`Primitive::v_down`]).
 //!
-//! Used by `tests/corpus.rs` (through `tests/common/mod.rs`) and by `crates/compare/examples/corpus_table.rs`
-//! (through `#[path]`), so it depends on nothing but the standard library, `gltf` and `tobj`.
+//! Used by the crate's corpus tests, the corpus table of `crates/compare`, and `tools/gltf`'s tests,
+//! which include it by path (through `tests/common/load.rs`): so it depends on nothing but the
+//! standard library, `gltf` and `tobj`.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -96,7 +97,7 @@ pub fn corpus_dir() -> Option<PathBuf> {
     // Whichever crate of the workspace compiles this file: the folder at or above it that holds it.
     let repo = manifest
         .ancestors()
-        .find(|dir| dir.join("tests/common/load.rs").is_file())
+        .find(|dir| dir.join("crates/test-support/src/load.rs").is_file())
         .unwrap_or(manifest);
     let dir = repo.join("../shared/meshes");
     dir.join("MANIFEST.tsv").is_file().then_some(dir)

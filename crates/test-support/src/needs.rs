@@ -1,27 +1,30 @@
 //! What some tests need beyond Rust: the mesh corpus beside the clone, and tools.
 //!
-//! `build.rs` includes this file and probes each need once. A need it finds missing becomes the
-//! cfg `tbasis_missing_<name>`, with which a test is compiled as ignored:
+//! A test that needs one checks it when it runs, first thing:
 //!
 //! ```ignore
 //! #[test]
-//! #[cfg_attr(tbasis_missing_valgrind, ignore = "needs valgrind (Debian: valgrind)")]
 //! fn c_harness_passes_under_valgrind() {
-//!     needs::VALGRIND.require();
+//!     if !needs::VALGRIND.found_or_skip() {
+//!         return;
+//!     }
+//!     // ...
+//! }
 //! ```
 //!
-//! so `cargo test` lists it as ignored with its reason. Under CI (`CI` set) no such cfg is set:
-//! the test runs and [`Need::require`] fails it. `tests/needs.rs` fails when a need found missing
-//! has appeared since, since its tests stay ignored until `build.rs` runs again.
+//! Where it is missing, the test prints `skipped: needs valgrind (Debian: valgrind)` and passes;
+//! under CI (`CI` set) it fails instead ([`Need::found_or_skip`]).
 //!
-//! Only the standard library: `build.rs` compiles this file too.
+//! `tools/gltf` includes this file by path (through `tests/common/needs.rs`) in its build script,
+//! which compiles its tests that need something missing as ignored, with the cfg
+//! `tbasis_missing_<name>`: so it uses only the standard library.
 
 use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// Something tests need that a fresh clone may lack.
 pub struct Need {
-    /// The `<name>` of the cfg `tbasis_missing_<name>`.
+    /// Its name; `tools/gltf` sets the cfg `tbasis_missing_<name>` when it is missing.
     pub name: &'static str,
     /// What it is and where to get it, for messages.
     pub what: &'static str,
@@ -105,22 +108,18 @@ pub const ALL: [&Need; 9] = [
     &PYTHON_VENV,
 ];
 
-/// The corpus manifest, whose presence stands for the corpus, for the root crate (other crates
-/// of the workspace use [`corpus_manifest`]).
-pub const CORPUS_MANIFEST: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/meshes/MANIFEST.tsv");
-
 /// The repository's root, whichever crate of the workspace compiles this file: the nearest folder
 /// at or above the crate's that holds this file.
 pub fn repo_dir() -> std::path::PathBuf {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     manifest
         .ancestors()
-        .find(|dir| dir.join("tests/common/needs.rs").is_file())
+        .find(|dir| dir.join("crates/test-support/src/needs.rs").is_file())
         .unwrap_or(manifest)
         .to_path_buf()
 }
 
-/// The corpus manifest beside the repository (`CORPUS_MANIFEST` for the root crate).
+/// The corpus manifest beside the repository, whose presence stands for the corpus.
 pub fn corpus_manifest() -> std::path::PathBuf {
     repo_dir().join("../shared/meshes/MANIFEST.tsv")
 }
@@ -141,14 +140,33 @@ impl Need {
         }
     }
 
-    /// Panics unless it is there. A test that calls this was compiled to run, so a missing need
-    /// means CI lacks it, or it was removed after `build.rs` looked.
+    /// Whether it is there, for a test to return early when it is not: then, under CI (`CI` set),
+    /// panics like [`Need::require`]; elsewhere prints `skipped: needs <what>` to the test's
+    /// stderr and returns false. The message bypasses the test harness's capture, so that
+    /// `cargo test` shows it although the test passes.
+    pub fn found_or_skip(&self) -> bool {
+        if self.found() {
+            return true;
+        }
+        if std::env::var_os("CI").is_some() {
+            self.missing_under_ci();
+        }
+        let thread = std::thread::current();
+        let test = thread.name().unwrap_or("a test");
+        // One write of the whole line, so that tests running at the same time do not interleave.
+        let line = format!("{test}: skipped: needs {}\n", self.what);
+        let _ = std::io::Write::write_all(&mut std::io::stderr(), line.as_bytes());
+        false
+    }
+
+    /// Panics unless it is there: under CI, which must provide it, or (`tools/gltf`) in a test
+    /// compiled to run, which means it was removed after `build.rs` looked.
     pub fn require(&self) {
         if self.found() {
             return;
         }
         if std::env::var_os("CI").is_some() {
-            panic!("{} is missing; CI must provide it", self.what);
+            self.missing_under_ci();
         }
         panic!(
             "{} is missing but was there when build.rs looked; `touch build.rs` to compile the \
@@ -157,15 +175,19 @@ impl Need {
         );
     }
 
+    fn missing_under_ci(&self) -> ! {
+        panic!("{} is missing; CI must provide it", self.what);
+    }
+
     /// The need called `name`.
     pub fn named(name: &str) -> Option<&'static Need> {
         ALL.into_iter().find(|need| need.name == name)
     }
 }
 
-/// Fails when a need that `build.rs` found missing (`missing_at_build`, its comma-separated
-/// `TBASIS_MISSING_NEEDS`) is found now: its tests stay compiled as ignored until `build_rs`
-/// changes, so the failure says to touch it.
+/// For `tools/gltf`: fails when a need that its `build.rs` found missing (`missing_at_build`, its
+/// comma-separated `TBASIS_MISSING_NEEDS`) is found now: its tests stay compiled as ignored until
+/// `build_rs` changes, so the failure says to touch it.
 pub fn assert_none_appeared_since(missing_at_build: &str, build_rs: &str) {
     let appeared: Vec<&str> = missing_at_build
         .split(',')

@@ -1,59 +1,10 @@
 //! With caller scratch (and one thread), a call makes no heap allocation at all, per-vertex or
-//! per-corner, counted on the calling thread.
+//! per-corner, counted on the calling thread. The C entry points are held to the same by
+//! `tests/allocation.rs` at the repository root, with the same counter.
 
-#[path = "common/mod.rs"]
-mod common;
-
-// The C boundary's own source, compiled in to count what it allocates (the C library has no Rust
-// interface).
-#[allow(dead_code)]
-#[path = "../src/codes.rs"]
-mod codes;
-#[allow(dead_code, non_camel_case_types)]
-#[path = "../src/ffi.rs"]
-mod ffi;
-#[allow(dead_code, non_camel_case_types)]
-#[path = "../src/status.rs"]
-mod status;
-
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-use common::cases::{mirror_fold, quantized_uv_sphere, unit_quad, Case};
 use tbasis::{scratch_size_for, DegeneratePolicy, Error, Method, Options, Output, Report, StridedMut};
-
-/// Counts the allocations of each thread, so that other tests running at the same time (and the
-/// test harness's own threads) neither add to a count nor hide one.
-struct Counting;
-
-thread_local! {
-    // A const-initialized Cell needs no allocation of its own, not even on first use.
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-/// Allocations the calling thread has made so far.
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-fn count_one() {
-    // `try_with`: a thread being torn down may still free and allocate.
-    let _ = ALLOCATIONS.try_with(|count| count.set(count.get() + 1));
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count_one();
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count_one();
-        System.realloc(ptr, layout, new_size)
-    }
-}
+use tbasis_test_support::alloc_count::{allocations, Counting};
+use tbasis_test_support::cases::{mirror_fold, quantized_uv_sphere, unit_quad, Case};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -126,63 +77,6 @@ fn caller_scratch_means_no_allocation() {
                 );
             }
         }
-    }
-}
-
-/// The C entry points with caller scratch allocate nothing either: the boundary's checks included.
-#[test]
-fn the_c_boundary_with_caller_scratch_allocates_nothing() {
-    use std::ffi::c_void;
-    use std::ptr::null_mut;
-
-    for case in [unit_quad(), mirror_fold(), quantized_uv_sphere()] {
-        let indices = case.indices.as_ref().unwrap();
-        let mesh = ffi::tbasis_mesh {
-            vertex_count: case.vertex_count(),
-            positions: case.positions.as_ptr().cast(),
-            positions_stride: 12,
-            normals: case.normals.as_ptr().cast(),
-            normals_stride: 12,
-            texcoords: case.texcoords.as_ref().unwrap().as_ptr().cast(),
-            texcoords_stride: 8,
-            indices: indices.as_ptr().cast(),
-            index_count: indices.len(),
-            index_type: codes::TBASIS_INDEX_U32,
-        };
-        let mut options = ffi::tbasis_options {
-            method: 0,
-            degenerate_policy: 0,
-            flags: 0,
-            threads: 1,
-            degenerate_threshold: 0.0,
-            scratch: null_mut(),
-            scratch_size: 0,
-        };
-        let needed = unsafe { ffi::tbasis_scratch_size(&mesh, &options) };
-        let mut scratch = vec![0u8; needed];
-        options.scratch = scratch.as_mut_ptr().cast::<c_void>();
-        options.scratch_size = needed;
-        let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
-        let mut bitangents = vec![[0.0f32; 3]; case.vertex_count()];
-        let mut corners = vec![[0.0f32; 4]; indices.len()];
-        let output = ffi::tbasis_output {
-            tangents: tangents.as_mut_ptr().cast(),
-            tangents_stride: 16,
-            bitangents: bitangents.as_mut_ptr().cast(),
-            bitangents_stride: 12,
-        };
-        let before = allocations();
-        let status = unsafe { ffi::tbasis_generate(&mesh, &options, &output, null_mut()) };
-        let corner_status =
-            unsafe { ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut()) };
-        let made = allocations() - before;
-        assert_eq!(
-            (status, corner_status),
-            (status::TBASIS_OK, status::TBASIS_OK),
-            "{}",
-            case.name
-        );
-        assert_eq!(made, 0, "{}: the C calls allocated", case.name);
     }
 }
 
