@@ -10,7 +10,7 @@ use tbasis::{
     copy_split_vertices, generate_corners, split_corners, Buffer, Error, ErrorKind, Indices, Mesh, Options, SeamSplit,
     Strided, StridedMut,
 };
-use tbasis_test_support::load;
+use tbasis_test_support::{load, needs};
 
 /// Checks `split` of a mesh with `vertex_count` vertices whose corner `c` is vertex
 /// `corner_vertex[c]` with tangent `tangents[c]`; `positions` is a per-vertex attribute to copy.
@@ -186,7 +186,7 @@ fn bad_input_is_refused() {
 
 #[test]
 fn every_corpus_mesh_splits_its_mikktspace_seams() {
-    if !tbasis_test_support::needs::CORPUS.found_or_skip() {
+    if !needs::CORPUS.found_or_skip() {
         return;
     }
     let dir = load::corpus_dir().expect("the corpus");
