@@ -2,16 +2,10 @@
 //! Cargo.toml. The committed `include/tbasis.h` must equal it: a test compares the two, and
 //! `TBASIS_WRITE_HEADER=1 cargo build` copies the generated one over the committed one.
 //!
-//! It also gives the Linux shared library its soname (and the build tree a link of that name), and
-//! tells the tests which of their needs (the mesh corpus, tools) are missing.
+//! It also gives the Linux shared library its soname (and the build tree a link of that name).
 
 use std::env;
 use std::path::{Path, PathBuf};
-
-// Shared with the tests, which check the same needs again when they run.
-#[allow(dead_code)]
-#[path = "tests/common/needs.rs"]
-mod needs;
 
 fn main() {
     let crate_dir = PathBuf::from(env::var("CARGO_MANIFEST_DIR").unwrap());
@@ -39,8 +33,6 @@ fn main() {
     if env::var_os("TBASIS_WRITE_HEADER").is_some() {
         std::fs::copy(&out, crate_dir.join("include/tbasis.h")).expect("copy header");
     }
-
-    declare_test_needs(&crate_dir);
 }
 
 /// Gives the Linux shared library the ABI name that executables record and later load:
@@ -103,28 +95,4 @@ fn link_soname_in_build_tree(soname: &str) {
     if let Err(e) = std::os::unix::fs::symlink("libtbasis.so", &link) {
         println!("cargo:warning=cannot create {}: {e}", link.display());
     }
-}
-
-/// For each test need (`tests/common/needs.rs`) found missing, sets the cfg
-/// `tbasis_missing_<name>`, which compiles the tests that need it as ignored, and lists the names
-/// in `TBASIS_MISSING_NEEDS`. Under CI (`CI` set) none is set, so such tests run and fail.
-fn declare_test_needs(crate_dir: &Path) {
-    println!("cargo:rerun-if-env-changed=CI");
-    // A deletion of the corpus is seen; its arrival cannot be, since watching a missing path
-    // reruns this script, and rebuilds the library, on every build (tests/needs.rs catches it).
-    if Path::new(needs::CORPUS_MANIFEST).is_file() {
-        println!("cargo:rerun-if-changed={}", needs::CORPUS_MANIFEST);
-    }
-    // A copy under CARGO_HOME is another package's dependency, whose tests are never built.
-    let dependency = env::var_os("CARGO_HOME").is_some_and(|home| crate_dir.starts_with(home));
-    let probe = env::var_os("CI").is_none() && !dependency;
-    let mut missing = Vec::new();
-    for need in needs::ALL {
-        println!("cargo::rustc-check-cfg=cfg(tbasis_missing_{})", need.name);
-        if probe && !need.found() {
-            println!("cargo::rustc-cfg=tbasis_missing_{}", need.name);
-            missing.push(need.name);
-        }
-    }
-    println!("cargo::rustc-env=TBASIS_MISSING_NEEDS={}", missing.join(","));
 }

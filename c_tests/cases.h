@@ -1,4 +1,4 @@
-/* Reader for the stability case file the Rust tests write (format: tests/common/cases.rs). */
+/* Reader for the stability case file the Rust tests write (format: crates/test-support/src/cases.rs). */
 #ifndef CASES_H
 #define CASES_H
 

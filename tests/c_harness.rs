@@ -2,8 +2,8 @@
 //! under AddressSanitizer + UndefinedBehaviorSanitizer, and under valgrind. Also compiles the
 //! header as strict C99 and C++11 and checks what the shared library exports.
 //!
-//! A test that needs a missing tool is ignored, with the tool named, except under CI, where it
-//! fails (`tests/common/needs.rs`).
+//! A test that needs a missing tool says it is skipped, with the tool named, except under CI, where
+//! it fails (`tbasis_test_support::needs`).
 #![cfg(target_os = "linux")]
 
 #[path = "common/mod.rs"]
@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::artifacts::library_dir;
-use common::needs;
 use common::tools::{run, run_ok};
+use tbasis_test_support::{cases, needs};
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off"];
@@ -91,7 +91,7 @@ fn build_harness(dir: &Path, sanitized: bool) -> PathBuf {
 /// The stability cases, written where the harness can read them.
 fn case_file(dir: &Path) -> PathBuf {
     let path = dir.join("cases.bin");
-    common::cases::write_case_file(&path, &common::cases::all_cases()).expect("write the case file");
+    cases::write_case_file(&path, &cases::all_cases()).expect("write the case file");
     path
 }
 
@@ -174,12 +174,10 @@ fn c_harness_passes() {
 }
 
 #[test]
-#[cfg_attr(
-    tbasis_missing_sanitizers,
-    ignore = "needs the ASan and UBSan runtimes (Debian: libasan8, libubsan1)"
-)]
 fn c_harness_passes_under_asan_and_ubsan() {
-    needs::SANITIZERS.require();
+    if !needs::SANITIZERS.found_or_skip() {
+        return;
+    }
     let dir = work_dir("sanitized");
     let exe = build_harness(&dir, true);
     let mut command = Command::new(exe);
@@ -201,9 +199,10 @@ fn c_harness_passes_under_asan_and_ubsan() {
 }
 
 #[test]
-#[cfg_attr(tbasis_missing_valgrind, ignore = "needs valgrind (Debian: valgrind)")]
 fn c_harness_passes_under_valgrind() {
-    needs::VALGRIND.require();
+    if !needs::VALGRIND.found_or_skip() {
+        return;
+    }
     let dir = work_dir("valgrind");
     let exe = build_harness(&dir, false);
     let mut command = Command::new("valgrind");
@@ -248,9 +247,10 @@ int main(void)
 "#;
 
 #[test]
-#[cfg_attr(tbasis_missing_cxx, ignore = "needs a C++ compiler, c++ (Debian: g++)")]
 fn header_compiles_as_cpp() {
-    needs::CXX.require();
+    if !needs::CXX.found_or_skip() {
+        return;
+    }
     let dir = work_dir("header");
     let lib = library_dir();
     for (cpp, file, standard) in [(true, "probe.cpp", "-std=c++11"), (false, "probe.c", "-std=c99")] {
@@ -286,9 +286,10 @@ fn header_functions() -> BTreeSet<String> {
 }
 
 #[test]
-#[cfg_attr(tbasis_missing_binutils, ignore = "needs nm (Debian: binutils)")]
 fn shared_library_exports_exactly_the_header_functions() {
-    needs::BINUTILS.require();
+    if !needs::BINUTILS.found_or_skip() {
+        return;
+    }
     let lib = library_dir().join("libtbasis.so");
     let output = Command::new("nm")
         .args(["-D", "--defined-only"])

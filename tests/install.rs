@@ -2,8 +2,8 @@
 //! or C++ project would: the installed layout and soname, CMake's `find_package` (shared, static,
 //! version check, moved prefix), pkg-config (shared and static) and the C++ example.
 //!
-//! One test per set of tools, so that a missing tool makes only the tests that need it ignored
-//! (under CI, where tools must be installed, failed: `tests/common/needs.rs`).
+//! One test per set of tools, so that a missing tool makes only the tests that need it skip
+//! (under CI, where tools must be installed, fail: `tbasis_test_support::needs`).
 #![cfg(target_os = "linux")]
 
 mod common;
@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::artifacts::{profile_dir, release, soname};
-use common::needs;
 use common::tools::run_ok;
+use tbasis_test_support::needs;
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const MAJOR: &str = env!("CARGO_PKG_VERSION_MAJOR");
@@ -339,42 +339,38 @@ fn installed(test: &str) -> (Scratch, PathBuf) {
 }
 
 #[test]
-#[cfg_attr(tbasis_missing_binutils, ignore = "needs readelf (Debian: binutils)")]
 fn installed_layout_and_soname() {
-    needs::BINUTILS.require();
+    if !needs::BINUTILS.found_or_skip() {
+        return;
+    }
     let (_scratch, prefix) = installed("layout");
     check_layout(&prefix);
 }
 
 #[test]
-#[cfg_attr(
-    any(tbasis_missing_cmake, tbasis_missing_binutils),
-    ignore = "needs cmake, make and readelf (Debian: cmake, make, binutils)"
-)]
 fn installed_library_is_consumable_through_cmake() {
-    needs::CMAKE.require();
-    needs::BINUTILS.require();
+    if !(needs::CMAKE.found_or_skip() && needs::BINUTILS.found_or_skip()) {
+        return;
+    }
     let (scratch, prefix) = installed("cmake");
     check_cmake(&prefix, &scratch.0);
     check_cmake_moved(&prefix, &scratch.0);
 }
 
 #[test]
-#[cfg_attr(
-    any(tbasis_missing_pkg_config, tbasis_missing_binutils),
-    ignore = "needs pkg-config and readelf (Debian: pkg-config, binutils)"
-)]
 fn installed_library_is_consumable_through_pkg_config() {
-    needs::PKG_CONFIG.require();
-    needs::BINUTILS.require();
+    if !(needs::PKG_CONFIG.found_or_skip() && needs::BINUTILS.found_or_skip()) {
+        return;
+    }
     let (scratch, prefix) = installed("pkg-config");
     check_pkg_config(&prefix, &scratch.0);
 }
 
 #[test]
-#[cfg_attr(tbasis_missing_cxx, ignore = "needs a C++ compiler, c++ (Debian: g++)")]
 fn installed_library_is_consumable_from_cpp() {
-    needs::CXX.require();
+    if !needs::CXX.found_or_skip() {
+        return;
+    }
     let (scratch, prefix) = installed("cpp");
     check_cpp(&prefix, &scratch.0);
 }

@@ -6,8 +6,8 @@
 //!
 //! The tests compare the package with this crate's C library (a release build), whose path they
 //! get in `TBASIS_REFERENCE_LIBRARY`. Everything the virtual environment holds comes from the
-//! package index (PyPI). Without python3 and its venv and pip modules the test is ignored, except
-//! under CI, where it fails (`tests/common/needs.rs`).
+//! package index (PyPI). Without python3 and its venv and pip modules the test is skipped, except
+//! under CI, where it fails (`tbasis_test_support::needs`).
 
 mod common;
 
@@ -15,8 +15,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::artifacts::{build_library, profile_dir};
-use common::needs;
 use common::tools::run_ok;
+use tbasis_test_support::needs;
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 
@@ -24,12 +24,10 @@ const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 const TEST_TOOLS: [&str; 3] = ["pytest", "mypy", "trimesh"];
 
 #[test]
-#[cfg_attr(
-    tbasis_missing_python_venv,
-    ignore = "needs python3 with venv and pip (Debian: python3-venv python3-pip)"
-)]
 fn python_package_builds_installs_and_passes_its_tests() {
-    needs::PYTHON_VENV.require();
+    if !needs::PYTHON_VENV.found_or_skip() {
+        return;
+    }
     let package = Path::new(CRATE_DIR).join("bindings/python");
     let work = profile_dir().parent().expect("the target dir").join("python-package");
     let reference = build_library(true).join(format!(

@@ -68,7 +68,7 @@
 //! Then, whenever the bytes make a mesh the library must accept (whatever the calls above were
 //! asked), method MIKKTSPACE with policy LEGACY, `flip_v` off and on, one and two threads, runs
 //! through the Rust API (`generate/mikktspace.rs`): every corner must have the bits mikktspace.c
-//! gives (built from `mikktspace-sys` by `tests/common/mikktspace_reference.rs`), a NaN matching
+//! gives (built from `mikktspace-sys` by `crates/test-support/src/mikktspace_reference.rs`), a NaN matching
 //! any NaN (which NaN an operation on NaN operands returns is fixed neither by C nor by Rust);
 //! every vertex its first corner's frame; the report's split, mirrored and unreferenced vertices
 //! those of the corners. The same runs on two meshes made from the decoded one: every value
@@ -129,7 +129,7 @@ mod mikktspace;
 #[path = "generate/mikktspace_cost.rs"]
 mod mikktspace_cost;
 #[allow(dead_code)]
-#[path = "../../tests/common/mikktspace_reference.rs"]
+#[path = "../../crates/test-support/src/mikktspace_reference.rs"]
 mod mikktspace_reference;
 #[path = "generate/outputs.rs"]
 mod outputs;

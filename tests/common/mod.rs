@@ -1,15 +1,6 @@
-//! Test support shared by the integration tests (each test file uses what it needs).
+//! Helpers of the C library's tests alone: its C artifacts and the tools the tests run. What they
+//! share with the crate's tests (`crates/tbasis/tests/`) is in `tbasis-test-support`.
 #![allow(dead_code)]
 
 pub mod artifacts;
-pub mod cases;
-pub mod invariants;
-pub mod load;
-pub mod mikktspace_reference;
-pub mod mikktspace_scenes;
-pub mod needs;
-pub mod proptest_config;
-pub mod run;
-pub mod scenes;
-pub mod shapes;
 pub mod tools;

@@ -1,6 +1,6 @@
 //! The default method's accuracy against mikktspace.c's, scene by scene, on a set of analytic
 //! scenes grown beyond the chart's so that no tuning can fit one shape (`accuracy_specs` in
-//! `tests/common/scenes.rs`, which `tests/accuracy.rs` also checks).
+//! `crates/test-support/src/scenes.rs`, which `crates/tbasis/tests/accuracy.rs` also checks).
 //!
 //! ```text
 //! cargo run --release -p tbasis-compare --example accuracy_table
@@ -8,19 +8,13 @@
 //!
 //! Prints the table and writes `docs/accuracy.md`. Accuracy only, no timing: it takes seconds.
 
-#[allow(dead_code)]
-#[path = "../../../tests/common/mikktspace_reference.rs"]
-mod mikktspace_reference;
-#[allow(dead_code)]
-#[path = "../../../tests/common/scenes.rs"]
-mod scenes;
-
 use std::fmt::Write as _;
 use std::fs;
 use std::path::PathBuf;
 
 use scenes::{Accuracy, Scene};
 use tbasis::{generate, Mesh, Options, Output};
+use tbasis_test_support::{mikktspace_reference, scenes};
 
 /// The scene's size as the table shows it: its grid, and its vertex count.
 fn size(scene: &Scene) -> String {
@@ -70,7 +64,7 @@ fn main() {
          for mikktspace.c (`mikktspace-sys`, each vertex taking its first corner's frame), and how \
          many vertices get exactly mikktspace.c's bits from the default (which sums mikktspace.c's \
          own terms: README, \"Methods\"). Ratios above 1 would be scenes where the default is less \
-         accurate. Scenes: `tests/common/scenes.rs`; \
+         accurate. Scenes: `crates/test-support/src/scenes.rs`; \
          the first seven are the chart's, the others were grown for this table: coarse grids, a \
          height field, non-uniformly scaled tori (x 1, 0.5, 2) and spheres (x 1.6, 1, 0.6), \
          jittered texture coordinates (by up to 0.1 of a cell) and quantised ones (to 1/256 or \

@@ -5,7 +5,7 @@
 //! cargo run --release -p tbasis-compare --example bench [FILTER]
 //! ```
 //!
-//! Scenes: the irregular torus of `docs/chart.md` at about 1M vertices (`tests/common/scenes.rs`),
+//! Scenes: the irregular torus of `docs/chart.md` at about 1M vertices (`crates/test-support/src/scenes.rs`),
 //! `../shared/meshes/derived/FlightHelmet.cc1.glb` (a real asset of 849k vertices, one call per
 //! primitive; skipped with a message when the corpus is absent) and a 24-vertex cube with a UV
 //! square per face (per-call overhead). Last, with configurations of its own, a 1M-vertex grid
@@ -22,7 +22,7 @@
 //! method must touch take at the read bandwidth measured at the start of the run.
 //!
 //! Method MIKKTSPACE runs per corner (`generate_corners`), against mikktspace.c through the
-//! wrapper the tests use (`tests/common/mikktspace_reference.rs`, reading the mesh through its
+//! wrapper the tests use (`crates/test-support/src/mikktspace_reference.rs`, reading the mesh through its
 //! index buffer, V up as the C port gets it). Before any timing, each scene's corners from both,
 //! with one and two threads, must agree bit for bit (a NaN matching any NaN), or the run stops.
 //! mikktspace.c takes seconds per call on the large scenes: it is timed in only
@@ -32,17 +32,8 @@
 
 #[path = "../../../c_tests/listing.rs"]
 mod listing;
-#[allow(dead_code)]
-#[path = "../../../tests/common/load.rs"]
-mod load;
 #[path = "common/machine.rs"]
 mod machine;
-#[allow(dead_code)]
-#[path = "../../../tests/common/mikktspace_reference.rs"]
-mod mikktspace_reference;
-#[allow(dead_code)]
-#[path = "../../../tests/common/scenes.rs"]
-mod scenes;
 
 use std::fmt::Write as _;
 use std::fs;
@@ -57,6 +48,7 @@ use tbasis::{
     generate, generate_corners, generate_corners_with_scratch, generate_with_scratch, scratch_size_for,
     DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Report, Strided, StridedMut,
 };
+use tbasis_test_support::{load, mikktspace_reference, scenes};
 
 /// The command, as the report shows it.
 const COMMAND: &str = "cargo run --release -p tbasis-compare --example bench";
@@ -918,7 +910,7 @@ fn main() {
          - **MIKKTSPACE per corner**: method MIKKTSPACE with policy LEGACY (`Options::mikktspace()`, \
          exactly mikktspace.c), one frame per triangle corner (`generate_corners`). \
          **mikktspace.c per corner**: mikktspace.c itself (`mikktspace-sys`, built by `cc` at `-O3`) \
-         through `tests/common/mikktspace_reference.rs`, whose callbacks read the mesh through its \
+         through `crates/test-support/src/mikktspace_reference.rs`, whose callbacks read the mesh through its \
          index buffer with the C port's V-up coordinates; it allocates its own memory on every call. \
          Both write into one buffer of a frame per corner allocated before the timing; their \
          ns/vertex are still per vertex. mikktspace.c is timed in a few rounds only, spread over the \

@@ -1,5 +1,5 @@
 //! Speed against accuracy: every method of this library and its peers on the analytic scenes of
-//! `tests/common/scenes.rs`, from about 500 to 1M vertices; then agreement with the MikkTSpace
+//! `crates/test-support/src/scenes.rs`, from about 500 to 1M vertices; then agreement with the MikkTSpace
 //! tangents stored in the real meshes of `../shared/meshes/` (skipped when it is absent).
 //!
 //! ```text
@@ -12,7 +12,7 @@
 //!
 //! Peers: the original listing (its C port, `c_tests/listing.c`, linked by `build.rs`),
 //! meshoptimizer's `meshopt_generateTangents` (the `meshopt` crate; default and MikkTSpace-compatible
-//! modes), mikktspace.c (`mikktspace-sys`, through `tests/common/mikktspace_reference.rs`) and
+//! modes), mikktspace.c (`mikktspace-sys`, through `crates/test-support/src/mikktspace_reference.rs`) and
 //! `bevy_mikktspace`. Every generator runs on the calling thread; the time is the median of several
 //! runs of the generating call alone. meshoptimizer and MikkTSpace write one tangent per triangle
 //! corner: each vertex takes the tangent of the first corner that references it, as this library's
@@ -22,17 +22,8 @@
 
 #[path = "../../../c_tests/listing.rs"]
 mod listing;
-#[allow(dead_code)]
-#[path = "../../../tests/common/load.rs"]
-mod load;
 #[path = "common/machine.rs"]
 mod machine;
-#[allow(dead_code)]
-#[path = "../../../tests/common/mikktspace_reference.rs"]
-mod mikktspace_reference;
-#[allow(dead_code)]
-#[path = "../../../tests/common/scenes.rs"]
-mod scenes;
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -46,6 +37,7 @@ use machine::{load_average, machine};
 use meshopt::TangentOptions;
 use scenes::{Accuracy, Scene, SceneSpec};
 use tbasis::{generate, DegeneratePolicy, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
+use tbasis_test_support::{load, mikktspace_reference, scenes};
 
 /// Who computes the tangents.
 #[derive(Clone, Copy)]
@@ -947,7 +939,7 @@ fn main() {
     let mut md = String::from(
         "# Speed against accuracy\n\n\
          Every method of this library and its peers, on analytic scenes whose true tangent is known \
-         in closed form (`tests/common/scenes.rs`): a torus and a sphere band, tessellated with \
+         in closed form (`crates/test-support/src/scenes.rs`): a torus and a sphere band, tessellated with \
          jittered vertices and random quad diagonals, with a smooth nonlinear UV warp, and a torus \
          whose texture is mirrored on one half (seam vertices duplicated). Error of a vertex: the \
          angle between its tangent and the true tangent dP/ds projected onto its tangent plane; \

@@ -6,14 +6,6 @@
 //! cargo run --release -p tbasis-compare --example corpus_table
 //! ```
 
-// The loader is shared with tests/corpus.rs; this example does not use all of it.
-#[allow(dead_code)]
-#[path = "../../../tests/common/load.rs"]
-mod load;
-#[path = "../../../tests/common/run.rs"]
-#[allow(dead_code)]
-mod run;
-
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -22,6 +14,7 @@ use std::time::Instant;
 
 use load::{MeshFile, Primitive};
 use tbasis::{DegeneratePolicy, Report};
+use tbasis_test_support::{load, run};
 
 const POLICIES: [(DegeneratePolicy, &str); 4] = [
     (DegeneratePolicy::Skip, "SKIP"),
@@ -123,7 +116,7 @@ fn write_row(
     (vertices, triangles, primitives): (usize, usize, usize),
     totals: &Totals,
 ) {
-    // Only LEGACY may write non-finite tangents; the others' promise is checked by tests/corpus.rs.
+    // Only LEGACY may write non-finite tangents; the others' promise is checked by crates/tbasis/tests/corpus.rs.
     let non_finite = if policy == DegeneratePolicy::Legacy {
         totals.non_finite_vertices.to_string()
     } else {
@@ -153,7 +146,7 @@ fn notes(files: &[MeshFile]) -> String {
     };
     format!(
         "- Files with primitives without normals ({}) get area-weighted vertex normals computed by \
-         the loader (`tests/common/load.rs`).\n\
+         the loader (`crates/test-support/src/load.rs`).\n\
          - Files with primitives without TEXCOORD_0 ({}): every vertex of those primitives falls \
          back under SKIP, INHERIT and REJECT; LEGACY refuses them.\n",
         listed(&|p| p.normals_computed),

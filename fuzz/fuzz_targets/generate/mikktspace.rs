@@ -1,4 +1,4 @@
-//! Method MIKKTSPACE against mikktspace.c itself (`tests/common/mikktspace_reference.rs`, through
+//! Method MIKKTSPACE against mikktspace.c itself (`crates/test-support/src/mikktspace_reference.rs`, through
 //! `mikktspace-sys`): per corner, the same bits (a NaN matching any NaN) under policy LEGACY; under
 //! SKIP, INHERIT and REJECT, the same bits wherever mikktspace.c's frame is usable and a valid
 //! frame with mikktspace.c's sign wherever it is not; per vertex, the first corner's frame. On a

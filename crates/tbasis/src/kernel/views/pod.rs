@@ -48,4 +48,3 @@ pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T
     let typed = unsafe { core::slice::from_raw_parts_mut(typed.as_mut_ptr().cast::<T>(), count) };
     Some((typed, rest))
 }
-

@@ -3,15 +3,13 @@
 //! the shared invariants hold, REJECT refuses exactly the meshes with degenerate triangles and
 //! then writes nothing, and every report count equals what the mesh's construction implies.
 //!
-//! Every mesh here comes from `common::cases`, whose `all_cases()` the C harness runs as well.
+//! Every mesh here comes from `tbasis_test_support::cases`, whose `all_cases()` the C harness runs as well.
 
-mod common;
-
-use common::cases::{self, Attribute, Case, BAD_VALUES, BAD_VERTEX, BAND_CYLINDER, BAND_ROWS};
-use common::invariants::{check_invariants, cross, dot, unit_normal};
-use common::run::{generate_into, Run};
-use common::shapes::{grid_index, tangent_at_u, uv_sphere, Poles};
 use tbasis::{DegeneratePolicy as Policy, ErrorKind, Method, Options, Output, Report, StridedMut};
+use tbasis_test_support::cases::{self, Attribute, Case, BAD_VALUES, BAD_VERTEX, BAND_CYLINDER, BAND_ROWS};
+use tbasis_test_support::invariants::{check_invariants, cross, dot, unit_normal};
+use tbasis_test_support::run::{generate_into, Run};
+use tbasis_test_support::shapes::{grid_index, tangent_at_u, uv_sphere, Poles};
 
 fn run_with(case: &Case, options: &Options) -> Run {
     case.run(options)

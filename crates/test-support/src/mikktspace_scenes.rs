@@ -10,7 +10,7 @@
 //! degenerate triangles, non-manifold edges, unindexed and 16-bit indexed meshes, a large grid
 //! and a random soup.
 //!
-//! Shared by `tests/mikktspace.rs` (through `tests/common/mod.rs`); it uses only its sibling
+//! Used by `crates/tbasis/tests/mikktspace.rs`; it uses only its sibling
 //! modules `cases`, `scenes` and `shapes`, so a fuzz target or bench can include it the same way.
 
 use super::cases::{self, Case};

@@ -10,10 +10,6 @@
 //! mesh's construction says, and the results are bit for bit those of the same mesh in packed
 //! arrays.
 
-mod common;
-
-use common::invariants::{check_invariants, unit_normal};
-use common::run::generate_into;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::Index;
@@ -22,6 +18,8 @@ use tbasis::{
     scratch_size, scratch_size_for, DegeneratePolicy, ErrorKind, Indices, Mesh, Method, Options, Output, Report,
     Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
 };
+use tbasis_test_support::invariants::{check_invariants, unit_normal};
+use tbasis_test_support::run::generate_into;
 
 /// Values that break naive arithmetic: non-finite, signed zeros, subnormals, extremes.
 const SPECIALS: [f32; 18] = [
@@ -879,7 +877,7 @@ fn check(s: &Scenario) -> Result<(), TestCaseError> {
 }
 
 fn config(cases: u32) -> Config {
-    common::proptest_config::fixed(cases, 0x7B45_1515)
+    tbasis_test_support::proptest_config::fixed(cases, 0x7B45_1515)
 }
 
 proptest! {

@@ -4,16 +4,14 @@
 //! Also: threads change no bit, errors write nothing, and caller scratch at any alignment gives
 //! the same bits.
 
-mod common;
-
-use common::cases::{all_cases, collapsed_band, mirror_fold, Case};
-use common::invariants::check_frame;
-use common::run::{generate_corners_into, UNTOUCHED};
-use common::scenes::{angle_deg, build, Scene, SceneSpec};
 use tbasis::{
     scratch_size, scratch_size_for, DegeneratePolicy as Policy, ErrorKind, Indices, Method, Options, Report, Strided,
     StridedMut,
 };
+use tbasis_test_support::cases::{all_cases, collapsed_band, mirror_fold, Case};
+use tbasis_test_support::invariants::check_frame;
+use tbasis_test_support::run::{generate_corners_into, UNTOUCHED};
+use tbasis_test_support::scenes::{angle_deg, build, Scene, SceneSpec};
 
 const METHODS: [Method; 4] = [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform];
 const POLICIES: [Policy; 4] = [Policy::Legacy, Policy::Skip, Policy::Inherit, Policy::Reject];

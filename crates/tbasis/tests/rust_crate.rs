@@ -7,15 +7,16 @@ use std::process::Command;
 
 use serde_json::Value;
 
-/// The packages a new crate depending on `crates/tbasis` by path builds (normal dependencies,
-/// default features), from `cargo metadata` run in a scratch crate under the target directory.
+/// The packages a new crate depending on this one (`crates/tbasis`) by path builds (normal
+/// dependencies, default features), from `cargo metadata` run in a scratch crate under the target
+/// directory.
 fn dependency_tree() -> Vec<Value> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let scratch = root.join("target/dependency-tree-check");
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scratch = Path::new(env!("CARGO_TARGET_TMPDIR")).join("dependency-tree-check");
     std::fs::create_dir_all(scratch.join("src")).unwrap();
     let manifest = format!(
         "[package]\nname = \"user\"\nversion = \"0.0.0\"\nedition = \"2021\"\n\n[dependencies]\ntbasis = {{ path = {:?} }}\n\n[workspace]\n",
-        root.join("crates/tbasis")
+        crate_dir
     );
     std::fs::write(scratch.join("Cargo.toml"), manifest).unwrap();
     std::fs::write(scratch.join("src/main.rs"), "fn main() {}\n").unwrap();
@@ -94,7 +95,7 @@ fn the_rust_crate_has_no_build_script_or_proc_macro_anywhere_in_its_tree() {
 
 #[test]
 fn unsafe_code_is_confined_to_the_views_and_the_simd_dispatch() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/tbasis/src");
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     let mut dirs = vec![src.clone()];
     while let Some(dir) = dirs.pop() {

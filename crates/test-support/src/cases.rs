@@ -2,8 +2,8 @@
 //!
 //! Case file (little-endian): magic `b"TBC1"`, u32 case count, then per case:
 //! u32 name length, name bytes (UTF-8), u64 vertex_count, u32 has_texcoords (0/1), u32 indexed (0/1),
-//! u64 index_count, f32 positions[3 * vertex_count], f32 normals[3 * vertex_count],
-//! f32 texcoords[2 * vertex_count] (only when has_texcoords), u32 indices[index_count] (only when indexed),
+//! u64 index_count, `f32 positions[3 * vertex_count]`, `f32 normals[3 * vertex_count]`,
+//! `f32 texcoords[2 * vertex_count]` (only when has_texcoords), `u32 indices[index_count]` (only when indexed),
 //! then the expected report for policies SKIP, INHERIT, REJECT in that order, each as six u64:
 //! degenerate_triangles, first_degenerate_triangle (u64::MAX for none), fallback_vertices,
 //! mirrored_vertices, unreferenced_vertices, inherited_vertices. For REJECT the report is the one the

@@ -4,15 +4,13 @@
 //! meshes whose corners draw tangents from a small set (so that they often agree), and on the
 //! MIKKTSPACE corners of every mesh of the corpus.
 
-mod common;
-
-use common::load;
 use proptest::prelude::*;
 use std::collections::HashMap;
 use tbasis::{
     copy_split_vertices, generate_corners, split_corners, Buffer, Error, ErrorKind, Indices, Mesh, Options, SeamSplit,
     Strided, StridedMut,
 };
+use tbasis_test_support::{load, needs};
 
 /// Checks `split` of a mesh with `vertex_count` vertices whose corner `c` is vertex
 /// `corner_vertex[c]` with tangent `tangents[c]`; `positions` is a per-vertex attribute to copy.
@@ -98,7 +96,7 @@ const PALETTE: [[f32; 4]; 5] = [
 ];
 
 proptest! {
-    #![proptest_config(common::proptest_config::fixed(256, 0x5EA5_5117))]
+    #![proptest_config(tbasis_test_support::proptest_config::fixed(256, 0x5EA5_5117))]
 
     #[test]
     fn random_splits_keep_every_corner_and_nothing_more(
@@ -187,12 +185,10 @@ fn bad_input_is_refused() {
 }
 
 #[test]
-#[cfg_attr(
-    tbasis_missing_corpus,
-    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
-)]
 fn every_corpus_mesh_splits_its_mikktspace_seams() {
-    common::needs::CORPUS.require();
+    if !needs::CORPUS.found_or_skip() {
+        return;
+    }
     let dir = load::corpus_dir().expect("the corpus");
     let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
     let (mut primitives, mut appended, mut split_vertices) = (0, 0, 0);

@@ -3,15 +3,9 @@
 //! (`mikktspace-exact` in `../shared/meshes/MANIFEST.tsv`): with the flag the handedness `w`
 //! agrees with the stored one on nearly every vertex, without it it is inverted on nearly every
 //! vertex, and with the flag the tangent directions agree too. Without the corpus the test is
-//! ignored, except under CI, where it fails (`tests/common/needs.rs`).
+//! skipped, except under CI, where it fails (`tbasis_test_support::needs`).
 
-// Only the loader: the rest of tests/common is not needed here.
-#[path = "common/load.rs"]
-#[allow(dead_code)]
-mod load;
-#[path = "common/needs.rs"]
-#[allow(dead_code)]
-mod needs;
+use tbasis_test_support::{load, needs};
 
 use load::Primitive;
 use tbasis::{generate, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
@@ -210,12 +204,10 @@ fn tally(primitive: &Primitive, stored: &[[f32; 4]], method: Method) -> Tally {
 }
 
 #[test]
-#[cfg_attr(
-    tbasis_missing_corpus,
-    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
-)]
 fn flip_v_matches_the_handedness_of_stored_gltf_tangents() {
-    needs::CORPUS.require();
+    if !needs::CORPUS.found_or_skip() {
+        return;
+    }
     let dir = load::corpus_dir().expect("the corpus");
     let manifest = load::read_manifest(&dir).expect("MANIFEST.tsv");
     let rows: Vec<_> = manifest

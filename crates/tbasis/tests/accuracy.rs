@@ -1,15 +1,14 @@
-//! Accuracy against analytic truth (see `tests/common/scenes.rs`): every method, on small jittered
+//! Accuracy against analytic truth (see `tbasis_test_support::scenes`): every method, on small jittered
 //! tori and spheres with warped texture maps, must stay within bounds set from measurement.
 //!
 //! Each bound is about 2.5 times the worst value the method measured on these scenes when the
 //! bounds were set (given in the comments), so an honest change of rounding passes and a change of
-//! weighting or a bug does not. `cargo test --test accuracy -- --nocapture` prints the measurements.
+//! weighting or a bug does not. `cargo test -p tbasis --test accuracy -- --nocapture` prints the
+//! measurements.
 
-mod common;
-
-use common::mikktspace_reference;
-use common::scenes::{self, Accuracy, Scene, SceneSpec, UvNoise};
 use tbasis::{generate, DegeneratePolicy, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
+use tbasis_test_support::mikktspace_reference;
+use tbasis_test_support::scenes::{self, Accuracy, Scene, SceneSpec, UvNoise};
 
 /// About 5k vertices: fine enough that the error reflects the method rather than the coarseness,
 /// small enough for debug builds.

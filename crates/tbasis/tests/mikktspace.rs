@@ -1,7 +1,7 @@
 //! Method MIKKTSPACE against mikktspace.c itself (the `mikktspace-sys` crate, which builds the
 //! original C file with `cc`): for every corner `3t + k`, exactly the tangent and sign that
 //! `genTangSpaceDefault` hands to `setTSpaceBasic(face t, vert k)` when its callbacks read the mesh
-//! through its index buffer (`tests/common/mikktspace_reference.rs`), `to_bits` on all four floats.
+//! through its index buffer (`tbasis_test_support::mikktspace_reference`), `to_bits` on all four floats.
 //!
 //! NaN outputs match any NaN: mikktspace.c's own NaN payloads and signs depend on how it is
 //! compiled (on `non_finite_scattered seed 2`, gcc 12 at -O0 and -O2 gives 0xffc00000 where -O3
@@ -13,7 +13,7 @@
 //!   `threads` 1, `flip_v` with 8);
 //! - the stored TANGENT of the glTF files whose manifest marks it as MikkTSpace's (see
 //!   [`stored_tangents_agree_with_flip_v`] for the comparison that holds, and why it is not bits);
-//! - the stress scenes of `tests/common/mikktspace_scenes.rs`, with `threads` 1, 2 and 8 (the
+//! - the stress scenes of `tbasis_test_support::mikktspace_scenes`, with `threads` 1, 2 and 8 (the
 //!   largest ones with fewer runs, see [`LARGE_SCENES`]);
 //! - random meshes drawn from small value sets (proptest), with `threads` 1 and 2;
 //! - the per-vertex output (each vertex gets its first corner's frame; a vertex no triangle uses
@@ -24,25 +24,24 @@
 //! Runtime of a debug build: about 60 s of CPU, half of it the corpus (mikktspace.c costs 9-17 us
 //! per vertex there, this library's debug build about as much; `--release` is 4x faster), so about
 //! 35 s on two idle cores. Debug builds skip corpus meshes above [`DEBUG_MAX_VERTICES`] (only
-//! `FlightHelmet.cc1.glb`, 849k vertices) and say so; `cargo test --release --test mikktspace`
-//! checks them too. Without the corpus the corpus tests are ignored, except under CI (`CI` set),
-//! where they fail (`tests/common/needs.rs`).
-
-mod common;
+//! `FlightHelmet.cc1.glb`, 849k vertices) and say so; `cargo test --release -p tbasis --test mikktspace`
+//! checks them too. Without the corpus the corpus tests are skipped, except under CI (`CI` set),
+//! where they fail (`tbasis_test_support::needs`).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
-use common::load::{self, ManifestRow, Primitive};
-use common::mikktspace_reference::reference_corners;
-use common::mikktspace_scenes::{self, IndexData, StressMesh};
-use common::run::{generate_corners_into, generate_into, UNTOUCHED};
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::select;
 use proptest::test_runner::Config;
 use tbasis::{generate_corners, scratch_size_for, Indices, Mesh, Options, Output, Report, Strided, StridedMut};
+use tbasis_test_support::load::{self, ManifestRow, Primitive};
+use tbasis_test_support::mikktspace_reference::reference_corners;
+use tbasis_test_support::mikktspace_scenes::{self, IndexData, StressMesh};
+use tbasis_test_support::needs;
+use tbasis_test_support::run::{generate_corners_into, generate_into, UNTOUCHED};
 
 /// Corpus meshes above this many vertices are skipped in debug builds (the reference alone would
 /// take 30 s on FlightHelmet.cc1).
@@ -453,7 +452,6 @@ fn corpus_outcome() -> &'static CorpusOutcome {
 }
 
 fn check_corpus() -> CorpusOutcome {
-    common::needs::CORPUS.require();
     let dir = load::corpus_dir().expect("the corpus");
     let started = Instant::now();
     let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
@@ -625,11 +623,10 @@ fn check_stored(row: &ManifestRow, subject: &Subject, ours: &[[f32; 4]], stored:
 }
 
 #[test]
-#[cfg_attr(
-    tbasis_missing_corpus,
-    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
-)]
 fn every_corpus_mesh_matches_mikktspace_c() {
+    if !needs::CORPUS.found_or_skip() {
+        return;
+    }
     let outcome = corpus_outcome();
     assert_no_failures("corpus against mikktspace.c", &outcome.bit_exact);
 }
@@ -643,11 +640,10 @@ fn every_corpus_mesh_matches_mikktspace_c() {
 /// `mikktspace-exact` files; `mikktspace-near` ones differ by up to 180 degrees where their
 /// exporter welded or re-split vertices). No vertex's corners split in those files.
 #[test]
-#[cfg_attr(
-    tbasis_missing_corpus,
-    ignore = "needs the mesh corpus ../shared/meshes beside the clone (README: Test corpus)"
-)]
 fn stored_tangents_agree_with_flip_v() {
+    if !needs::CORPUS.found_or_skip() {
+        return;
+    }
     let outcome = corpus_outcome();
     for note in &outcome.stored_notes {
         eprintln!("{note}");
@@ -980,7 +976,7 @@ fn check_random(m: &RandomMesh) -> Result<(), String> {
 }
 
 fn config(cases: u32) -> Config {
-    common::proptest_config::fixed(cases, 0x6d69_6b6b)
+    tbasis_test_support::proptest_config::fixed(cases, 0x6d69_6b6b)
 }
 
 proptest! {

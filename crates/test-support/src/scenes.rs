@@ -15,9 +15,9 @@
 //! side with identical position and normal, as exported assets have them; each copy's truth is
 //! that of its own side.
 //!
-//! Shared by `tests/accuracy.rs` (through `tests/common/mod.rs`) and `crates/compare/examples/chart.rs` and
-//! `accuracy_table.rs` (through `#[path]`), so there is one metric for all; it depends on the standard
-//! library and glam only.
+//! Shared by `crates/tbasis/tests/accuracy.rs` and `crates/compare/examples/chart.rs` and
+//! `accuracy_table.rs`, so there is one metric for all; it depends on the standard library and glam
+//! only.
 
 use std::f64::consts::{PI, TAU};
 
@@ -25,7 +25,7 @@ use glam::DVec3;
 
 /// Largest jitter of a grid vertex, in cells along each parameter. At 0.2 the corners of a
 /// triangle move by at most 0.4 of a cell relative to each other, which keeps every triangle's
-/// orientation in parameter space (checked by `tests/accuracy.rs`).
+/// orientation in parameter space (checked by `crates/tbasis/tests/accuracy.rs`).
 pub const JITTER: f64 = 0.2;
 
 /// The resolutions of the sweep, in vertices (each scene lands within a few percent).

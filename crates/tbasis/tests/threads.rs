@@ -1,11 +1,8 @@
 //! `threads = N` changes nothing but speed: results and reports are bit-identical for every N.
 
-#[path = "common/mod.rs"]
-mod common;
-
-use common::cases::{quantized_uv_sphere, Case};
-use common::scenes::{build, SceneSpec};
 use tbasis::{DegeneratePolicy, Method, Options};
+use tbasis_test_support::cases::{quantized_uv_sphere, Case};
+use tbasis_test_support::scenes::{build, SceneSpec};
 
 /// A jittered, warped torus large enough for four workers.
 fn torus() -> Case {

@@ -1,0 +1,15 @@
+//! Test support shared by the workspace's tests: the Rust crate's (`crates/tbasis/tests/`) and the
+//! C library's (`tests/` at the repository root, whose C harness runs the same stability cases).
+//! Each test file uses what it needs.
+
+pub mod alloc_count;
+pub mod cases;
+pub mod invariants;
+pub mod load;
+pub mod mikktspace_reference;
+pub mod mikktspace_scenes;
+pub mod needs;
+pub mod proptest_config;
+pub mod run;
+pub mod scenes;
+pub mod shapes;
