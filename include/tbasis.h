@@ -16,10 +16,10 @@
 #include <stdint.h>
 
 #define TBASIS_VERSION_MAJOR 0
-#define TBASIS_VERSION_MINOR 3
+#define TBASIS_VERSION_MINOR 4
 #define TBASIS_VERSION_PATCH 0
 /* TBASIS_VERSION_MAJOR * 1000000 + TBASIS_VERSION_MINOR * 1000 + TBASIS_VERSION_PATCH; compare with tbasis_version(). */
-#define TBASIS_VERSION (0 * 1000000 + 3 * 1000 + 0)
+#define TBASIS_VERSION (0 * 1000000 + 4 * 1000 + 0)
 
 
 // `index_type`: 16-bit indices.
@@ -28,13 +28,13 @@
 // `index_type`: 32-bit indices.
 #define TBASIS_INDEX_U32 2
 
-// `method`: the original listing (Lengyel 2001); each triangle adds its unnormalized dP/du.
+// `method`: the original listing (Lengyel 2001): each triangle adds its unnormalized dP/du.
 #define TBASIS_METHOD_LENGYEL 1
 
-// `method` (the default): each triangle's tangent projected into the vertex's tangent plane,
-// normalized and weighted by the corner angle measured in that plane, in mikktspace.c's
-// arithmetic: per vertex, mikktspace.c's frame for the vertex's first corner wherever the vertex's
-// triangles and normal are clean (see the README's "Methods").
+// `method` (the default, except with policy LEGACY: there the listing's, LENGYEL): each
+// triangle's tangent in the vertex's tangent plane, weighted by the
+// corner angle, in mikktspace.c's arithmetic; mikktspace.c's per-vertex frame on clean meshes
+// (README, "Methods", says where exactly).
 #define TBASIS_METHOD_ANGLE 2
 
 // `method`: unit face tangents weighted by triangle area.
@@ -43,17 +43,15 @@
 // `method`: unit face tangents with equal weights (per-face averaging).
 #define TBASIS_METHOD_UNIFORM 4
 
-// `method`: exactly what mikktspace.c's `genTangSpaceDefault` hands to `setTSpaceBasic`, float
-// for float, per corner (`tbasis_generate_corners`): the tangents almost every normal map is
-// baked against. Needs `texcoords`. Its default policy (0) is LEGACY, which is exactly
-// mikktspace.c, including what it writes for degenerate and non-finite input; SKIP and INHERIT
-// differ only where mikktspace.c writes a non-finite, zero or non-unit tangent or one not
-// perpendicular to the normal, and there write a finite unit tangent perpendicular to it.
-// `tbasis_generate` gives each vertex its first corner's frame.
+// `method`: exactly mikktspace.c's `genTangSpaceDefault`, per corner (`tbasis_generate_corners`;
+// `tbasis_generate` gives each vertex its first corner's frame). Needs `texcoords`. Its default
+// policy (0) is LEGACY: exactly mikktspace.c; SKIP and INHERIT replace only the frames
+// mikktspace.c leaves unusable (README, "MikkTSpace, bit for bit").
 #define TBASIS_METHOD_MIKKTSPACE 5
 
-// `degenerate_policy`: exactly the listing (or, with method MIKKTSPACE, exactly mikktspace.c),
-// bit for bit, including its inf/NaN.
+// `degenerate_policy`: exactly the listing (method LENGYEL, or 0) or mikktspace.c (method
+// MIKKTSPACE), bit for bit, inf/NaN included; any other method with it is
+// `TBASIS_ERROR_NO_LEGACY_FORM`.
 #define TBASIS_DEGENERATE_LEGACY 1
 
 // `degenerate_policy`: degenerate triangles contribute nothing; vertices left without a tangent
@@ -110,8 +108,8 @@ typedef struct tbasis_options {
   uint32_t degenerate_policy;
   // `TBASIS_FLAG_*` bits; unknown bits are an error.
   uint32_t flags;
-  // Upper bound on threads; 0 or 1: the calling thread only. Meshes get one worker per 32768
-  // vertices at most; results are bit-identical whatever the value.
+  // Upper bound on threads; 0 or 1: the calling thread only. Every method uses one worker per
+  // 16384 triangles at most; results are bit-identical whatever the value.
   uint32_t threads;
   // UV and position shape quality (1 = equilateral, 0 = collapsed) below which a triangle is
   // degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
@@ -278,15 +276,10 @@ tbasis_status tbasis_generate(const struct tbasis_mesh *mesh,
 // index (`index_count` elements), or per vertex when `mesh->indices` is NULL (`vertex_count`).
 //
 // With `TBASIS_METHOD_MIKKTSPACE` each corner gets exactly mikktspace.c's frame for it. The
-// per-vertex methods give each corner its vertex's frame, except at a mirror fold (a vertex used
-// by triangles of both UV orientations), where each corner gets the frame of its own side:
-//
-// - a corner gets exactly the bits `tbasis_generate` writes for its vertex;
-// - except at a mirror fold whose vertex frame was measured (from one side's sum: its first
-//   corner's side, unless the other sums twice as long): there a corner of a non-degenerate triangle on the other side gets the frame of that
-//   side's own sum, with that side's `w`, when the sum passes the test the vertex's passed;
-// - so corners of degenerate triangles, all corners of a fold vertex that inherited its frame or
-//   fell back, and (policy LEGACY, which has no sides) every corner get their vertex's frame.
+// per-vertex methods give each corner exactly the bits `tbasis_generate` writes for its vertex,
+// except at a mirror fold (a vertex used by non-degenerate triangles of both UV orientations):
+// there a corner of a non-degenerate triangle on the side the vertex's frame does not come from
+// gets that side's own frame and `w` (README, "Degenerate-UV policies").
 //
 // Needs the same scratch as `tbasis_generate` (`tbasis_scratch_size`), allocates nothing more
 // per corner, and gives the same `report`; `threads` changes no bit.
@@ -399,7 +392,8 @@ tbasis_status tbasis_calculate_tangent_array(long vertex_count,
 // - `TBASIS_METHOD_MIKKTSPACE`, with `T = C / 3` triangles:
 //   `57*C + 65*T + 4*V + 4*max(2*V + 2, C) + max(40*C + 8*V + 16415, 147*T + 33) + 39` (about
 //   132 bytes per corner; the second `max` is the largest phase's memory: the weld's, or in most
-//   indexed meshes, from about `(8*V + 16382) / 9` corners, grouping's), 0 when `V` is 0.
+//   indexed meshes, from about `(8*V + 16382) / 9` corners, grouping's), 0 when `V` is 0; with
+//   policy REJECT at least `29*V + 3`, in which the degenerate test runs first.
 //
 // Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
 // `options` may be NULL (the defaults).

@@ -94,6 +94,21 @@ fn invalid_threshold() {
 }
 
 #[test]
+fn no_legacy_form() {
+    check(
+        generate_error(
+            Some(&TEXCOORDS),
+            &[0, 1, 2],
+            &Options::legacy().with_method(Method::Uniform),
+        ),
+        Error::NoLegacyForm {
+            method: Method::Uniform,
+        },
+        "policy Legacy reproduces the listing (method Lengyel) or mikktspace.c (method Mikktspace); method Uniform has no legacy form",
+    );
+}
+
+#[test]
 fn degenerate_uv_carries_the_report() {
     let collapsed = [[0.5f32, 0.5]; 3];
     let error = generate_error(

@@ -704,6 +704,9 @@ fn predicted_error(s: &Scenario, outcome: &Outcome) -> Option<ErrorKind> {
     if !threshold.is_finite() || threshold < 0.0 {
         return Some(ErrorKind::InvalidThreshold);
     }
+    if s.options.degenerate_policy == DegeneratePolicy::Legacy && !s.options.method.has_legacy_form() {
+        return Some(ErrorKind::NoLegacyForm);
+    }
     if outcome.miscounted {
         return Some(ErrorKind::LengthMismatch);
     }

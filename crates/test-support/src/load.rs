@@ -69,7 +69,15 @@ impl Primitive {
 
     /// Options for `policy`, with V pointing down for glTF.
     pub fn options(&self, policy: tbasis::DegeneratePolicy) -> tbasis::Options {
-        tbasis::Options::default().with_policy(policy).with_flip_v(self.v_down)
+        // Policy LEGACY is the listing's: method LENGYEL.
+        let method = match policy {
+            tbasis::DegeneratePolicy::Legacy => tbasis::Method::Lengyel,
+            _ => tbasis::Method::DEFAULT,
+        };
+        tbasis::Options::default()
+            .with_method(method)
+            .with_policy(policy)
+            .with_flip_v(self.v_down)
     }
 }
 

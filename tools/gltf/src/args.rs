@@ -69,7 +69,8 @@ pub enum MethodArg {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PolicyArg {
-    /// Exactly what the method gives, invalid tangents included.
+    /// Exactly what the method gives, invalid tangents included (methods mikktspace and lengyel,
+    /// which reproduce mikktspace.c and the listing).
     Legacy,
     /// Degenerate triangles contribute nothing; a corner left without a tangent gets one built
     /// from its normal.
@@ -114,6 +115,7 @@ impl Args {
 
     /// Every (input, output) pair, or what is wrong with the command line.
     pub fn jobs(&self) -> Result<Vec<Job>, String> {
+        self.options().validate().map_err(|error| error.to_string())?;
         for input in &self.inputs {
             kind_of(input)?;
         }

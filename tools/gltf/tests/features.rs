@@ -194,3 +194,33 @@ fn the_normal_texture_chooses_the_texture_coordinates() {
     let tangents = after.corners(0, 0, 1).tangents.unwrap();
     assert!(tangents.iter().all(|t| *t == [1.0, 0.0, 0.0, -1.0]), "{tangents:?}");
 }
+
+#[test]
+fn policy_legacy_needs_a_method_with_a_legacy_form() {
+    let dir = tool::fresh_dir("legacy-form");
+    let input = Fixture::mirrored_quad().write_gltf(&dir, "quad");
+    let output = dir.join("out.gltf");
+    let refused = tool::run([
+        input.as_os_str(),
+        "--method".as_ref(),
+        "angle".as_ref(),
+        "--policy".as_ref(),
+        "legacy".as_ref(),
+        "-o".as_ref(),
+        output.as_os_str(),
+    ]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success(), "{stderr}");
+    assert!(stderr.contains("method Angle has no legacy form"), "{stderr}");
+    assert!(!output.exists(), "written despite the refusal");
+    let listing = tool::run([
+        input.as_os_str(),
+        "--method".as_ref(),
+        "lengyel".as_ref(),
+        "--policy".as_ref(),
+        "legacy".as_ref(),
+        "-o".as_ref(),
+        output.as_os_str(),
+    ]);
+    assert!(listing.status.success(), "{}", String::from_utf8_lossy(&listing.stderr));
+}
