@@ -19,7 +19,7 @@ from support import same_bits
 CODES = {member: code for code, member in enumerate(tbasis.Method)}
 POLICY_CODES = {member: code for code, member in enumerate(tbasis.Policy)}
 # C statuses the package turns into these classes.
-ERRORS = {1: tbasis.MissingTexcoordsError, 11: tbasis.DegenerateUvError}
+ERRORS = {1: tbasis.MissingTexcoordsError, 11: tbasis.DegenerateUvError, 19: tbasis.InvalidOptionError}
 
 
 def for_reference(indices: Optional[NDArray[Any]]) -> Optional[NDArray[Any]]:

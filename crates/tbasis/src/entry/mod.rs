@@ -1,4 +1,5 @@
 //! The public entry points: each validates the call, then hands it to one pipeline.
+#![forbid(unsafe_code)]
 
 #[cfg(test)]
 mod determinism_tests;

@@ -5,6 +5,7 @@
 //! * [`per_vertex`]: the robust per-vertex methods (ANGLE, AREA, UNIFORM and LENGYEL under SKIP,
 //!   INHERIT and REJECT), per vertex or per corner.
 //! * [`mikktspace`]: mikktspace.c's `genTangSpaceDefault`, float for float (method MIKKTSPACE).
+#![forbid(unsafe_code)]
 
 pub(crate) mod listing;
 pub(crate) mod mikktspace;
