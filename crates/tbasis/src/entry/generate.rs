@@ -3,7 +3,7 @@
 
 use crate::entry::validate;
 use crate::kernel::error::Error;
-use crate::kernel::memory::with_memory;
+use crate::kernel::memory::{with_memory, Place};
 use crate::kernel::mesh::{Mesh, Output};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
 use crate::kernel::report::Report;
@@ -91,30 +91,34 @@ impl Pipeline {
         }
     }
 
-    /// The pipeline for a validated call on `mesh`, and the bytes of working memory it needs.
-    fn for_call(mesh: &Mesh, options: &Options) -> Result<(Pipeline, usize), Error> {
-        let pipeline = Pipeline::of(options);
-        let size = pipeline
-            .memory_bytes(options.degenerate_policy, mesh.vertex_count(), mesh.corner_count())
-            .ok_or(Error::SizeOverflow)?;
-        Ok((pipeline, size))
-    }
-
     /// Bytes of working memory the pipeline lays out for a call on `vertex_count` vertices and
-    /// `corner_count` corners; `None` on overflow. MIKKTSPACE under REJECT first runs the
-    /// per-vertex test for degenerate triangles in the same memory.
-    fn memory_bytes(self, policy: DegeneratePolicy, vertex_count: usize, corner_count: usize) -> Option<usize> {
+    /// `corner_count` corners in memory from `place`; `None` on overflow. MIKKTSPACE under REJECT
+    /// first runs the per-vertex test for degenerate triangles in the same memory.
+    fn memory_bytes(
+        self,
+        policy: DegeneratePolicy,
+        vertex_count: usize,
+        corner_count: usize,
+        place: Place,
+    ) -> Option<usize> {
         match self {
             Pipeline::Listing => listing::memory_bytes(vertex_count),
-            Pipeline::PerVertex => per_vertex::memory_bytes(policy, vertex_count, corner_count),
+            Pipeline::PerVertex => per_vertex::memory_bytes(policy, vertex_count, corner_count, place),
             Pipeline::Mikktspace => {
                 let own = mikktspace::scratch_bytes(vertex_count, corner_count)?;
                 if policy != DegeneratePolicy::Reject {
                     return Some(own);
                 }
-                Some(own.max(per_vertex::memory_bytes(policy, vertex_count, corner_count)?))
+                Some(own.max(per_vertex::memory_bytes(policy, vertex_count, corner_count, place)?))
             }
         }
+    }
+
+    /// [`Pipeline::memory_bytes`] for a call on `mesh`.
+    fn memory_for(self, mesh: &Mesh, options: &Options) -> impl Fn(Place) -> Option<usize> {
+        let (policy, vertex_count, corner_count) =
+            (options.degenerate_policy, mesh.vertex_count(), mesh.corner_count());
+        move |place| self.memory_bytes(policy, vertex_count, corner_count, place)
     }
 }
 
@@ -129,17 +133,20 @@ pub(crate) fn generate_into(
     // 1. Nothing is written unless every check passes: options, counts, overlaps.
     validate::validate(mesh, options, output, footprint(&scratch))?;
     // 2. Working memory: the caller's scratch or a fresh zeroed allocation, laid out by the
-    //    pipeline.
-    let (pipeline, size) = Pipeline::for_call(mesh, options)?;
-    // 3. The pipeline computes and writes.
-    with_memory(scratch, size, |memory| match pipeline {
-        Pipeline::Listing => listing::generate(mesh, options, memory, output, report),
-        Pipeline::PerVertex => per_vertex::generate(mesh, options, memory, output, report),
-        Pipeline::Mikktspace => {
-            refuse_degenerate(mesh, options, memory)?;
-            mikktspace::generate_vertices(mesh, options, output, memory, report)
-        }
-    })
+    //    pipeline, which then computes and writes.
+    let pipeline = Pipeline::of(options);
+    with_memory(
+        scratch,
+        pipeline.memory_for(mesh, options),
+        |memory, place| match pipeline {
+            Pipeline::Listing => listing::generate(mesh, options, memory, output, report),
+            Pipeline::PerVertex => per_vertex::generate(mesh, options, memory, place, output, report),
+            Pipeline::Mikktspace => {
+                refuse_degenerate(mesh, options, memory)?;
+                mikktspace::generate_vertices(mesh, options, output, memory, report)
+            }
+        },
+    )
 }
 
 /// Policy REJECT's refusal for MIKKTSPACE, whose pipeline has no degenerate test of its own: the
@@ -225,15 +232,19 @@ pub(crate) fn generate_corners_into(
     report: &mut Report,
 ) -> Result<(), Error> {
     validate::validate_corners(mesh, options, tangents, footprint(&scratch))?;
-    let (pipeline, size) = Pipeline::for_call(mesh, options)?;
-    with_memory(scratch, size, |memory| match pipeline {
-        Pipeline::Listing => listing::generate_corners(mesh, options, memory, tangents, report),
-        Pipeline::PerVertex => per_vertex::generate_corners(mesh, options, memory, tangents, report),
-        Pipeline::Mikktspace => {
-            refuse_degenerate(mesh, options, memory)?;
-            mikktspace::generate_corners(mesh, options, tangents, memory, report)
-        }
-    })
+    let pipeline = Pipeline::of(options);
+    with_memory(
+        scratch,
+        pipeline.memory_for(mesh, options),
+        |memory, place| match pipeline {
+            Pipeline::Listing => listing::generate_corners(mesh, options, memory, tangents, report),
+            Pipeline::PerVertex => per_vertex::generate_corners(mesh, options, memory, place, tangents, report),
+            Pipeline::Mikktspace => {
+                refuse_degenerate(mesh, options, memory)?;
+                mikktspace::generate_corners(mesh, options, tangents, memory, report)
+            }
+        },
+    )
 }
 
 /// Bytes of caller scratch a [`generate_with_scratch`] or [`generate_corners_with_scratch`] call on `mesh` with
@@ -277,7 +288,7 @@ pub fn scratch_size_for(mesh: &Mesh, options: &Options) -> Option<usize> {
 /// assert_eq!(scratch_size_for_counts(&options, usize::MAX, 3), None);
 /// ```
 pub fn scratch_size_for_counts(options: &Options, vertex_count: usize, corner_count: usize) -> Option<usize> {
-    Pipeline::of(options).memory_bytes(options.degenerate_policy, vertex_count, corner_count)
+    Pipeline::of(options).memory_bytes(options.degenerate_policy, vertex_count, corner_count, Place::Caller)
 }
 
 /// Bytes of caller scratch a call on `vertex_count` vertices needs under policies LEGACY, SKIP and
@@ -290,5 +301,5 @@ pub fn scratch_size_for_counts(options: &Options, vertex_count: usize, corner_co
 /// assert_eq!(tbasis::scratch_size(usize::MAX), None);
 /// ```
 pub fn scratch_size(vertex_count: usize) -> Option<usize> {
-    crate::kernel::memory::vertex_arrays_bytes(vertex_count, 0)
+    crate::kernel::memory::vertex_arrays_bytes(vertex_count, 0, Place::Caller)
 }

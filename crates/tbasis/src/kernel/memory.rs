@@ -61,57 +61,92 @@ pub(crate) fn bytes_of<T>(layout: impl FnOnce(&mut Arena<'static>) -> Result<T, 
     Ok(arena.counted())
 }
 
-/// Bytes the arrays for `vertex_count` vertices and `link_bytes` of adjacency take, as
-/// [`vertex_arrays`] lays them out: `vertex_count * 29 + link_bytes + 3` (the 3 let the sums start at a
-/// 4-byte boundary wherever the memory begins), 0 for an empty mesh. `None` on overflow.
-pub(crate) fn vertex_arrays_bytes(vertex_count: usize, link_bytes: usize) -> Option<usize> {
+/// Bytes the arrays for `vertex_count` vertices and `link_bytes` of adjacency take in memory from
+/// `place`, as [`vertex_arrays`] lays them out: in the caller's, `vertex_count * 29 + link_bytes +
+/// 3` (the 3 let the sums start at a 4-byte boundary wherever the memory begins); on the heap the
+/// same without `link_bytes`; 0 for an empty mesh. `None` on overflow.
+pub(crate) fn vertex_arrays_bytes(vertex_count: usize, link_bytes: usize, place: Place) -> Option<usize> {
     if vertex_count == 0 {
         return Some(0);
     }
-    bytes_of(|arena| vertex_arrays(arena, vertex_count, link_bytes).map(|_| ())).ok()
+    let in_memory = if place == Place::Caller { link_bytes } else { 0 };
+    let counted = |arena: &mut Arena<'static>| vertex_arrays(arena, vertex_count, in_memory, None).map(|_| ());
+    bytes_of(counted).ok()
 }
 
 /// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena`: the
 /// sums, the adjacency (right after them, so 4-byte aligned), the flags; the sums and flags zeroed.
-pub fn vertex_arrays<'a>(arena: &mut Arena<'a>, vertex_count: usize, link_bytes: usize) -> Result<Scratch<'a>, Error> {
+/// With `heap_links` (heap memory, [`Place::Heap`]) the adjacency is only reserved there instead.
+pub fn vertex_arrays<'a>(
+    arena: &mut Arena<'a>,
+    vertex_count: usize,
+    link_bytes: usize,
+    heap_links: Option<&'a mut Vec<u8>>,
+) -> Result<Scratch<'a>, Error> {
+    let in_arena = if heap_links.is_none() { link_bytes } else { 0 };
     let sums: &mut [VertexSums] = arena.take(vertex_count)?;
-    let links = arena.take(link_bytes)?;
+    let links = arena.take(in_arena)?;
     let flags: &mut [u8] = arena.take(vertex_count)?;
     sums.fill(VertexSums::default());
     flags.fill(0);
+    let links = match heap_links {
+        None => Links::Caller(links),
+        Some(heap) => Links::reserve(heap, link_bytes)?,
+    };
     Ok(Scratch {
         sums,
         flags,
         first: 0,
-        links: Links(links),
+        links,
     })
 }
 
-/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]. A fallible reservation first tells
-/// whether the memory is there; the zeroed allocation that follows comes from the system already
-/// cleared, so a large buffer costs only the pages a call then touches, not a pass over all of it.
+/// Where a call's working memory comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Place {
+    /// The caller's scratch: everything a call may touch is laid out in it.
+    Caller,
+    /// A fresh allocation: memory a call touches only in some cases (policy INHERIT's adjacency)
+    /// is reserved apart instead ([`Links::reserve`]), so that a call that does not need it
+    /// neither allocates it with the rest nor faults its pages in.
+    Heap,
+}
+
+/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]. A large buffer comes from the
+/// system already cleared, after a fallible reservation tells whether the memory is there, so it
+/// costs only the pages a call then touches; a small one is cleared here, in one allocation.
 pub(crate) fn zeroed_bytes(len: usize) -> Result<Vec<u8>, Error> {
-    let mut probe: Vec<u8> = Vec::new();
-    probe.try_reserve_exact(len).map_err(|_| Error::OutOfMemory)?;
-    drop(probe);
+    /// Below this, clearing costs less than a second allocation (and the allocator would clear
+    /// its recycled memory anyway).
+    const CLEARED_BY_THE_SYSTEM: usize = 128 * 1024;
+    let mut bytes: Vec<u8> = Vec::new();
+    bytes.try_reserve_exact(len).map_err(|_| Error::OutOfMemory)?;
+    if len < CLEARED_BY_THE_SYSTEM {
+        bytes.resize(len, 0);
+        return Ok(bytes);
+    }
+    drop(bytes);
     Ok(vec![0; len])
 }
 
-/// Runs `job` on `size` bytes of working memory: the first `size` of the caller's `scratch`
-/// ([`Error::ScratchTooSmall`] when it has fewer), or a fresh zeroed allocation.
+/// Runs `job` on the working memory of one call: the first `size(Place::Caller)` bytes of the
+/// caller's `scratch` ([`Error::ScratchTooSmall`] when it has fewer), or `size(Place::Heap)`
+/// fresh zeroed bytes; `None` from `size` is [`Error::SizeOverflow`].
 pub(crate) fn with_memory<R>(
     scratch: Option<&mut [u8]>,
-    size: usize,
-    job: impl FnOnce(&mut [u8]) -> Result<R, Error>,
+    size: impl Fn(Place) -> Option<usize>,
+    job: impl FnOnce(&mut [u8], Place) -> Result<R, Error>,
 ) -> Result<R, Error> {
     match scratch {
         Some(bytes) => {
-            let len = bytes.len();
-            job(bytes
-                .get_mut(..size)
-                .ok_or(Error::ScratchTooSmall { needed: size, len })?)
+            let (needed, len) = (size(Place::Caller).ok_or(Error::SizeOverflow)?, bytes.len());
+            let memory = bytes.get_mut(..needed).ok_or(Error::ScratchTooSmall { needed, len })?;
+            job(memory, Place::Caller)
         }
-        None => job(&mut zeroed_bytes(size)?),
+        None => {
+            let mut memory = zeroed_bytes(size(Place::Heap).ok_or(Error::SizeOverflow)?)?;
+            job(&mut memory, Place::Heap)
+        }
     }
 }
 
@@ -123,17 +158,18 @@ mod tests {
 
     /// `layout` in memory of `size` bytes at byte offset `offset` of a buffer.
     fn carve(buffer: &mut [u8], vertex_count: usize, link_bytes: usize) -> Result<usize, Error> {
-        let scratch = vertex_arrays(&mut Arena::Carve(buffer), vertex_count, link_bytes)?;
-        let aligned = scratch.links.0.is_empty() || scratch.links.0.as_ptr() as usize % 4 == 0;
+        let mut scratch = vertex_arrays(&mut Arena::Carve(buffer), vertex_count, link_bytes, None)?;
+        let links = scratch.links.bytes();
+        let aligned = links.is_empty() || links.as_ptr() as usize % 4 == 0;
         assert!(aligned, "adjacency not aligned");
-        Ok(scratch.links.0.len())
+        Ok(links.len())
     }
 
     #[test]
     fn the_size_is_enough_at_every_alignment_and_one_byte_less_is_not() {
         for vertex_count in [1usize, 2, 7, 100] {
             for link_bytes in [0, 4 * (2 * vertex_count + 9)] {
-                let size = vertex_arrays_bytes(vertex_count, link_bytes).unwrap();
+                let size = vertex_arrays_bytes(vertex_count, link_bytes, Place::Caller).unwrap();
                 assert_eq!(size, vertex_count * 29 + link_bytes + 3, "the documented formula");
                 let mut buffer = vec![0u8; size + 8];
                 for offset in 0..4 {
@@ -147,8 +183,13 @@ mod tests {
                 assert!(carve(&mut buffer[worst..worst + size - 1], vertex_count, link_bytes).is_err());
             }
         }
-        assert_eq!(vertex_arrays_bytes(0, 0), Some(0));
-        assert_eq!(vertex_arrays_bytes(usize::MAX, 0), None);
+        assert_eq!(vertex_arrays_bytes(0, 0, Place::Caller), Some(0));
+        // On the heap the adjacency is reserved apart.
+        assert_eq!(
+            vertex_arrays_bytes(10, 400, Place::Heap),
+            vertex_arrays_bytes(10, 0, Place::Caller)
+        );
+        assert_eq!(vertex_arrays_bytes(usize::MAX, 0, Place::Caller), None);
     }
 
     #[test]
@@ -164,7 +205,7 @@ mod tests {
         assert_eq!(link_bytes(inherit, 0, 30), Some(0));
         // 4 bytes per entry: a start and a queue slot per vertex, one entry per corner.
         assert_eq!(link_bytes(inherit, 10, 30), Some(4 * (2 * 10 + 30)));
-        let size = vertex_arrays_bytes(10, link_bytes(inherit, 10, 30).unwrap());
+        let size = vertex_arrays_bytes(10, link_bytes(inherit, 10, 30).unwrap(), Place::Caller);
         assert_eq!(size, Some(10 * 37 + 30 * 4 + 3));
         assert_eq!(link_bytes(inherit, usize::MAX / 2, 30), None);
     }

@@ -125,13 +125,37 @@ pub struct Scratch<'s> {
 }
 
 /// Memory for policy INHERIT's adjacency (4-byte aligned, any contents), which only a call that
-/// defers some vertex writes: in fresh memory its pages cost nothing until then.
-pub struct Links<'s>(pub &'s mut [u8]);
+/// defers some vertex writes.
+pub enum Links<'s> {
+    /// Laid out in the caller's scratch (empty for a worker's range).
+    Caller(&'s mut [u8]),
+    /// Heap bytes reserved (`.1` of them) before the call writes anything, so that using them
+    /// cannot fail halfway; neither written nor faulted in while no vertex needs them.
+    Heap(&'s mut Vec<u8>, usize),
+}
 
-impl Links<'_> {
-    /// The bytes, as many as were asked for.
+impl<'s> Links<'s> {
+    /// `len` bytes reserved in `heap` (3 more, to align them), or [`Error::OutOfMemory`].
+    pub fn reserve(heap: &'s mut Vec<u8>, len: usize) -> Result<Self, Error> {
+        let with_alignment = if len == 0 {
+            0
+        } else {
+            len.checked_add(3).ok_or(Error::OutOfMemory)?
+        };
+        heap.try_reserve_exact(with_alignment).map_err(|_| Error::OutOfMemory)?;
+        Ok(Links::Heap(heap, with_alignment))
+    }
+
+    /// The bytes (any contents), at least as many as were asked for: the heap's filled up to
+    /// their reserved length without reallocating.
     pub fn bytes(&mut self) -> &mut [u8] {
-        self.0
+        match self {
+            Links::Caller(bytes) => bytes,
+            Links::Heap(heap, len) => {
+                heap.resize(*len, 0);
+                heap
+            }
+        }
     }
 }
 
@@ -155,7 +179,7 @@ impl<'s> Scratch<'s> {
                 sums: part_sums,
                 flags: part_flags,
                 first,
-                links: Links(&mut []),
+                links: Links::Caller(&mut []),
             });
             (sums, flags, first) = (rest_sums, rest_flags, end);
         }

@@ -8,7 +8,7 @@
 use glam::Vec3;
 
 use crate::kernel::error::Error;
-use crate::kernel::memory::{self, Arena};
+use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType};
 use crate::kernel::options::Options;
 use crate::kernel::parallel;
@@ -19,7 +19,12 @@ use crate::kernel::views::strided::{Strided, StridedMut};
 /// Bytes of working memory a call needs: the per-vertex sums (`tan1`, `tan2`) and flags,
 /// `vertex_count * 29 + 3`. `None` on overflow.
 pub(crate) fn memory_bytes(vertex_count: usize) -> Option<usize> {
-    memory::vertex_arrays_bytes(vertex_count, 0)
+    memory::vertex_arrays_bytes(vertex_count, 0, Place::Caller)
+}
+
+/// The listing's arrays laid out in `memory` (at least [`memory_bytes`] long).
+fn scratch_in<'a>(mesh: &Mesh, memory: &'a mut [u8]) -> Result<Scratch<'a>, Error> {
+    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, None)
 }
 
 /// Writes every vertex's frame into `output`.
@@ -30,7 +35,7 @@ pub(crate) fn generate(
     output: &mut Output,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0)?;
+    let mut scratch = scratch_in(mesh, memory)?;
     run(mesh, options, &mut scratch, Some(output), report)
 }
 
@@ -42,7 +47,7 @@ pub(crate) fn generate_corners(
     tangents: &mut StridedMut<[f32; 4]>,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0)?;
+    let mut scratch = scratch_in(mesh, memory)?;
     run(mesh, options, &mut scratch, None, report)?;
     sums::write_corner_frames(mesh, options.threads, scratch.sums, tangents, |_, _| Ok(()))
 }

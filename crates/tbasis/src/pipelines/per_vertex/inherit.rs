@@ -275,7 +275,7 @@ fn settle(mesh: &Mesh, v: usize, gathered: Vec3) -> Option<Vec3> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::memory::{self, Arena};
+    use crate::kernel::memory::{self, Arena, Place};
     use crate::kernel::mesh::Indices;
     use crate::kernel::options::{DegeneratePolicy, Method, Options};
     use crate::kernel::parallel;
@@ -305,7 +305,7 @@ mod tests {
                 sums: &mut self.sums,
                 flags: &mut self.flags,
                 first: 0,
-                links: Links(&mut self.links),
+                links: Links::Caller(&mut self.links),
             }
         }
     }
@@ -666,9 +666,10 @@ mod tests {
         assert!(wide.flags == expected_flags.as_slice(), "{what}, 8-byte entries: flags");
 
         if caller {
-            let size = memory::vertex_arrays_bytes(vertex_count, links).unwrap();
+            let size = memory::vertex_arrays_bytes(vertex_count, links, Place::Caller).unwrap();
             let mut bytes = vec![0xA5u8; size + 1];
-            let mut scratch = memory::vertex_arrays(&mut Arena::Carve(&mut bytes[1..]), vertex_count, links).unwrap();
+            let mut scratch =
+                memory::vertex_arrays(&mut Arena::Carve(&mut bytes[1..]), vertex_count, links, None).unwrap();
             resolve_measured(&mesh, &options(1), &mut scratch, None, &mut Report::default()).unwrap();
             assert_eq!(
                 propagate(&mesh, &mut scratch),

@@ -18,7 +18,7 @@ pub(crate) mod inherit;
 pub(crate) mod resolve;
 
 use crate::kernel::error::Error;
-use crate::kernel::memory::{self, Arena};
+use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
 use crate::kernel::report::Report;
@@ -29,14 +29,28 @@ use crate::kernel::{frame, parallel, simd};
 /// Bytes of working memory a call needs: the per-vertex sums and flags, and policy INHERIT's
 /// adjacency (`vertex_count * 29 + 3`, and for INHERIT `(2 * vertex_count + corner_count) * 4`
 /// more, or `* 8` beyond 32-bit counts). `None` on overflow.
-pub(crate) fn memory_bytes(policy: DegeneratePolicy, vertex_count: usize, corner_count: usize) -> Option<usize> {
-    memory::vertex_arrays_bytes(vertex_count, sums::link_bytes(policy, vertex_count, corner_count)?)
+pub(crate) fn memory_bytes(
+    policy: DegeneratePolicy,
+    vertex_count: usize,
+    corner_count: usize,
+    place: Place,
+) -> Option<usize> {
+    let links = sums::link_bytes(policy, vertex_count, corner_count)?;
+    memory::vertex_arrays_bytes(vertex_count, links, place)
 }
 
-/// The per-vertex arrays laid out in `memory` (at least [`memory_bytes`] long).
-fn scratch_in<'a>(mesh: &Mesh, policy: DegeneratePolicy, memory: &'a mut [u8]) -> Result<Scratch<'a>, Error> {
+/// The per-vertex arrays laid out in `memory` (at least [`memory_bytes`] long), policy INHERIT's
+/// adjacency in heap memory reserved in `heap_links`.
+fn scratch_in<'a>(
+    mesh: &Mesh,
+    policy: DegeneratePolicy,
+    memory: &'a mut [u8],
+    place: Place,
+    heap_links: &'a mut Vec<u8>,
+) -> Result<Scratch<'a>, Error> {
     let links = sums::link_bytes(policy, mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;
-    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links)
+    let heap_links = (place == Place::Heap).then_some(heap_links);
+    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links, heap_links)
 }
 
 /// Writes every vertex's frame into `output`.
@@ -44,10 +58,12 @@ pub(crate) fn generate(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
+    place: Place,
     output: &mut Output,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = scratch_in(mesh, options.degenerate_policy, memory)?;
+    let mut heap_links = Vec::new();
+    let mut scratch = scratch_in(mesh, options.degenerate_policy, memory, place, &mut heap_links)?;
     resolve_vertices(mesh, options, &mut scratch, Some(output), report)
 }
 
@@ -56,10 +72,12 @@ pub(crate) fn generate_corners(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
+    place: Place,
     tangents: &mut StridedMut<[f32; 4]>,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = scratch_in(mesh, options.degenerate_policy, memory)?;
+    let mut heap_links = Vec::new();
+    let mut scratch = scratch_in(mesh, options.degenerate_policy, memory, place, &mut heap_links)?;
     resolve_vertices(mesh, options, &mut scratch, None, report)?;
     corners::write(mesh, options, &scratch, tangents)
 }
@@ -70,7 +88,9 @@ pub(crate) fn generate_corners(
 /// threshold, or non-finite input). Uses `memory` ([`memory_bytes`] of policy REJECT) and leaves
 /// any bits there.
 pub(crate) fn refuse_degenerate(mesh: &Mesh, options: &Options, memory: &mut [u8]) -> Result<(), Error> {
-    let mut scratch = scratch_in(mesh, DegeneratePolicy::Reject, memory)?;
+    // REJECT has no adjacency: nothing is reserved apart.
+    let mut no_links = Vec::new();
+    let mut scratch = scratch_in(mesh, DegeneratePolicy::Reject, memory, Place::Caller, &mut no_links)?;
     let measured = Options {
         method: Method::Angle,
         ..*options
