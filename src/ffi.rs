@@ -51,7 +51,8 @@ pub struct tbasis_mesh {
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct tbasis_options {
-    /// A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`).
+    /// A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`; with policy
+    /// `TBASIS_DEGENERATE_LEGACY`, the listing's method, `TBASIS_METHOD_LENGYEL`).
     pub method: u32,
     /// A `TBASIS_DEGENERATE_*` value; 0: the method's default (`TBASIS_DEGENERATE_LEGACY` for
     /// `TBASIS_METHOD_MIKKTSPACE`, `TBASIS_DEGENERATE_INHERIT` for the others).

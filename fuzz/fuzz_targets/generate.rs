@@ -74,8 +74,8 @@
 //! those of the corners. The same runs on two meshes made from the decoded one: every value
 //! snapped to one of a few (equal corners, shared edges, collapsed triangles and exact mirror
 //! seams become common), and its corners unindexed. The library starts a worker per 16384
-//! triangles (method MIKKTSPACE) or 32768 vertices at most, beyond the fuzzer's meshes (8192
-//! triangles, 4096 vertices): the thread counts only check that asking for a second thread
+//! triangles at most, for every method, beyond the fuzzer's meshes (8192 triangles, 4096
+//! vertices): the thread counts only check that asking for a second thread
 //! changes nothing.
 //!
 //! `FUZZ_DEBUG=1` prints the decoded calls, the mesh and the reports of each input run; a

@@ -198,8 +198,8 @@ def generate(
     converted to uint32 once.
 
     method, policy: names or ``Method``/``Policy`` members; ``"default"`` is the library's
-    default (``"angle"``; the policy: ``"legacy"`` for ``"mikktspace"``, which is then exactly
-    mikktspace.c, else ``"inherit"``). threshold: the UV quality below which a triangle is
+    default (``"angle"``, or ``"lengyel"`` with policy ``"legacy"``; the policy: ``"legacy"`` for
+    ``"mikktspace"``, which is then exactly mikktspace.c, else ``"inherit"``). threshold: the UV quality below which a triangle is
     degenerate (None: 1e-5). flip_v: V points down in texcoords (glTF, Direct3D) as read from
     the file. threads: at most this many threads (0 and 1: the calling thread); any number gives
     the same bits. The GIL is released while the library runs: other threads must not modify

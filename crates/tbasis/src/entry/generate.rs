@@ -139,7 +139,7 @@ pub(crate) fn generate_into(
         scratch,
         pipeline.memory_for(mesh, options),
         |memory, place| match pipeline {
-            Pipeline::Listing => listing::generate(mesh, options, memory, output, report),
+            Pipeline::Listing => listing::generate(mesh, options, memory, place, output, report),
             Pipeline::PerVertex => per_vertex::generate(mesh, options, memory, place, output, report),
             Pipeline::Mikktspace => {
                 refuse_degenerate(mesh, options, memory)?;
@@ -152,10 +152,10 @@ pub(crate) fn generate_into(
 /// Policy REJECT's refusal for MIKKTSPACE, whose pipeline has no degenerate test of its own: the
 /// per-vertex methods' test, so every method refuses the same meshes with the same report.
 fn refuse_degenerate(mesh: &Mesh, options: &Options, memory: &mut [u8]) -> Result<(), Error> {
-    if options.degenerate_policy != DegeneratePolicy::Reject {
-        return Ok(());
+    match options.degenerate_policy {
+        DegeneratePolicy::Reject => per_vertex::refuse_degenerate(mesh, options, memory),
+        _ => Ok(()),
     }
-    per_vertex::refuse_degenerate(mesh, options, memory)
 }
 
 /// Where the caller's scratch lies, for the overlap checks.
@@ -237,7 +237,7 @@ pub(crate) fn generate_corners_into(
         scratch,
         pipeline.memory_for(mesh, options),
         |memory, place| match pipeline {
-            Pipeline::Listing => listing::generate_corners(mesh, options, memory, tangents, report),
+            Pipeline::Listing => listing::generate_corners(mesh, options, memory, place, tangents, report),
             Pipeline::PerVertex => per_vertex::generate_corners(mesh, options, memory, place, tangents, report),
             Pipeline::Mikktspace => {
                 refuse_degenerate(mesh, options, memory)?;
@@ -249,7 +249,8 @@ pub(crate) fn generate_corners_into(
 
 /// Bytes of caller scratch a [`generate_with_scratch`] or [`generate_corners_with_scratch`] call on `mesh` with
 /// `options` needs (any alignment), 0 when the mesh has no vertices: for method MIKKTSPACE
-/// `4 * mikktspace words(vertex_count, corner_count) + 3`; for the other methods with policy
+/// `4 * mikktspace words(vertex_count, corner_count) + 3` (with policy REJECT at least
+/// [`scratch_size`], in which the degenerate test runs first); for the other methods with policy
 /// INHERIT `vertex_count * 37 + corner_count * 4 + 3` ([`scratch_size`] plus the adjacency that
 /// spreads tangents: per vertex a list start and a queue slot, per corner its triangle, 4 bytes
 /// each, or 8 when the vertex or corner count exceeds `u32::MAX`); otherwise [`scratch_size`] of

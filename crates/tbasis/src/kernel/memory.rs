@@ -55,7 +55,7 @@ impl<'a> Arena<'a> {
 }
 
 /// The bytes `layout` takes from an arena.
-pub(crate) fn bytes_of<T>(layout: impl FnOnce(&mut Arena<'static>) -> Result<T, Error>) -> Result<usize, Error> {
+pub(crate) fn bytes_of<'a, T>(layout: impl FnOnce(&mut Arena<'a>) -> Result<T, Error>) -> Result<usize, Error> {
     let mut arena = Arena::Count(0);
     layout(&mut arena)?;
     Ok(arena.counted())
@@ -70,28 +70,32 @@ pub(crate) fn vertex_arrays_bytes(vertex_count: usize, link_bytes: usize, place:
         return Some(0);
     }
     let in_memory = if place == Place::Caller { link_bytes } else { 0 };
-    let counted = |arena: &mut Arena<'static>| vertex_arrays(arena, vertex_count, in_memory, None).map(|_| ());
-    bytes_of(counted).ok()
+    let mut no_links = Vec::new();
+    bytes_of(|arena| vertex_arrays(arena, vertex_count, in_memory, Place::Caller, &mut no_links).map(|_| ())).ok()
 }
 
-/// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena`: the
-/// sums, the adjacency (right after them, so 4-byte aligned), the flags; the sums and flags zeroed.
-/// With `heap_links` (heap memory, [`Place::Heap`]) the adjacency is only reserved there instead.
+/// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena` in
+/// memory from `place`: the sums, the adjacency (right after them, so 4-byte aligned), the flags;
+/// the sums and flags zero (heap memory comes zeroed). In heap memory the adjacency is only
+/// reserved, in `heap_links`.
 pub fn vertex_arrays<'a>(
     arena: &mut Arena<'a>,
     vertex_count: usize,
     link_bytes: usize,
-    heap_links: Option<&'a mut Vec<u8>>,
+    place: Place,
+    heap_links: &'a mut Vec<u8>,
 ) -> Result<Scratch<'a>, Error> {
-    let in_arena = if heap_links.is_none() { link_bytes } else { 0 };
+    let in_arena = if place == Place::Caller { link_bytes } else { 0 };
     let sums: &mut [VertexSums] = arena.take(vertex_count)?;
     let links = arena.take(in_arena)?;
     let flags: &mut [u8] = arena.take(vertex_count)?;
-    sums.fill(VertexSums::default());
-    flags.fill(0);
-    let links = match heap_links {
-        None => Links::Caller(links),
-        Some(heap) => Links::reserve(heap, link_bytes)?,
+    let links = match place {
+        Place::Caller => {
+            sums.fill(VertexSums::default());
+            flags.fill(0);
+            Links::Caller(links)
+        }
+        Place::Heap => Links::reserve(heap_links, link_bytes)?,
     };
     Ok(Scratch {
         sums,
@@ -156,9 +160,16 @@ mod tests {
     use crate::kernel::options::DegeneratePolicy;
     use crate::kernel::sums::link_bytes;
 
-    /// `layout` in memory of `size` bytes at byte offset `offset` of a buffer.
+    /// [`vertex_arrays`] in `buffer` as the caller's; the adjacency's length.
     fn carve(buffer: &mut [u8], vertex_count: usize, link_bytes: usize) -> Result<usize, Error> {
-        let mut scratch = vertex_arrays(&mut Arena::Carve(buffer), vertex_count, link_bytes, None)?;
+        let mut unused = Vec::new();
+        let mut scratch = vertex_arrays(
+            &mut Arena::Carve(buffer),
+            vertex_count,
+            link_bytes,
+            Place::Caller,
+            &mut unused,
+        )?;
         let links = scratch.links.bytes();
         let aligned = links.is_empty() || links.as_ptr() as usize % 4 == 0;
         assert!(aligned, "adjacency not aligned");

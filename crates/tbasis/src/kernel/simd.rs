@@ -1,14 +1,14 @@
 //! Runtime choice of the widest vector instructions the CPU has, for the robust path's kernels
 //! and MIKKTSPACE's corner terms.
 //!
-//! The kernels are written once, as loops over lanes that LLVM vectorizes (`robust::batch`). A
+//! The kernels are written once, as loops over lanes that LLVM vectorizes (`kernel::lanes`). A
 //! build for the default x86-64 target may only assume SSE2, four lanes per instruction; here the
 //! same kernels are compiled a second time with AVX2 enabled (eight lanes) and that copy runs when
 //! the CPU supports it. Both copies perform the same IEEE operations in the same order on every
 //! lane: no fused multiply-add (FMA is not enabled, and Rust never contracts `a * b + c`), square
 //! roots and divisions correctly rounded in both, and sums added one triangle at a time outside
-//! the lane loops. So every path gives the same bits (`tests` below run each path the machine
-//! has and compare, `entry/determinism_tests.rs`).
+//! the lane loops. So every path gives the same bits (`entry/determinism_tests.rs` runs each path
+//! the machine has and compares).
 //!
 //! This module and the strided views are the crate's only `unsafe` code: calling a function
 //! compiled for AVX2 is sound only on a CPU that has it, which is checked right before.

@@ -88,7 +88,8 @@ pub(crate) fn link_bytes(policy: DegeneratePolicy, vertex_count: usize, corner_c
     adjacency_bytes(vertex_count, corner_count)
 }
 
-/// Bytes policy INHERIT's adjacency (`robust::inherit::propagate`) needs for a mesh of `vertex_count` vertices and `corner_count` corners:
+/// Bytes policy INHERIT's adjacency (`pipelines::per_vertex::inherit::propagate`) needs for a mesh
+/// of `vertex_count` vertices and `corner_count` corners:
 /// `2 * vertex_count + corner_count` entries (a range start and a queue slot per vertex, a
 /// triangle per corner) of 4 bytes, or of 8 when a count does not fit in 32 bits.
 fn adjacency_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {

@@ -22,9 +22,15 @@ pub(crate) fn memory_bytes(vertex_count: usize) -> Option<usize> {
     memory::vertex_arrays_bytes(vertex_count, 0, Place::Caller)
 }
 
-/// The listing's arrays laid out in `memory` (at least [`memory_bytes`] long).
-fn scratch_in<'a>(mesh: &Mesh, memory: &'a mut [u8]) -> Result<Scratch<'a>, Error> {
-    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, None)
+/// The listing's arrays laid out in `memory` (at least [`memory_bytes`] long) from `place`; it
+/// has no adjacency, so `no_links` stays empty.
+fn scratch_in<'a>(
+    mesh: &Mesh,
+    memory: &'a mut [u8],
+    place: Place,
+    no_links: &'a mut Vec<u8>,
+) -> Result<Scratch<'a>, Error> {
+    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, place, no_links)
 }
 
 /// Writes every vertex's frame into `output`.
@@ -32,10 +38,12 @@ pub(crate) fn generate(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
+    place: Place,
     output: &mut Output,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = scratch_in(mesh, memory)?;
+    let mut no_links = Vec::new();
+    let mut scratch = scratch_in(mesh, memory, place, &mut no_links)?;
     run(mesh, options, &mut scratch, Some(output), report)
 }
 
@@ -44,10 +52,12 @@ pub(crate) fn generate_corners(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
+    place: Place,
     tangents: &mut StridedMut<[f32; 4]>,
     report: &mut Report,
 ) -> Result<(), Error> {
-    let mut scratch = scratch_in(mesh, memory)?;
+    let mut no_links = Vec::new();
+    let mut scratch = scratch_in(mesh, memory, place, &mut no_links)?;
     run(mesh, options, &mut scratch, None, report)?;
     sums::write_corner_frames(mesh, options.threads, scratch.sums, tangents, |_, _| Ok(()))
 }

@@ -667,9 +667,15 @@ mod tests {
 
         if caller {
             let size = memory::vertex_arrays_bytes(vertex_count, links, Place::Caller).unwrap();
-            let mut bytes = vec![0xA5u8; size + 1];
-            let mut scratch =
-                memory::vertex_arrays(&mut Arena::Carve(&mut bytes[1..]), vertex_count, links, None).unwrap();
+            let (mut bytes, mut unused) = (vec![0xA5u8; size + 1], Vec::new());
+            let mut scratch = memory::vertex_arrays(
+                &mut Arena::Carve(&mut bytes[1..]),
+                vertex_count,
+                links,
+                Place::Caller,
+                &mut unused,
+            )
+            .unwrap();
             resolve_measured(&mesh, &options(1), &mut scratch, None, &mut Report::default()).unwrap();
             assert_eq!(
                 propagate(&mesh, &mut scratch),

@@ -26,9 +26,10 @@ use crate::kernel::sums::{self, count_flags, Scratch};
 use crate::kernel::views::strided::StridedMut;
 use crate::kernel::{frame, parallel, simd};
 
-/// Bytes of working memory a call needs: the per-vertex sums and flags, and policy INHERIT's
-/// adjacency (`vertex_count * 29 + 3`, and for INHERIT `(2 * vertex_count + corner_count) * 4`
-/// more, or `* 8` beyond 32-bit counts). `None` on overflow.
+/// Bytes of working memory a call needs in memory from `place`: the per-vertex sums and flags,
+/// and policy INHERIT's adjacency (`vertex_count * 29 + 3`, and for INHERIT in the caller's
+/// scratch `(2 * vertex_count + corner_count) * 4` more, or `* 8` beyond 32-bit counts; on the
+/// heap the adjacency is reserved apart). `None` on overflow.
 pub(crate) fn memory_bytes(
     policy: DegeneratePolicy,
     vertex_count: usize,
@@ -49,8 +50,7 @@ fn scratch_in<'a>(
     heap_links: &'a mut Vec<u8>,
 ) -> Result<Scratch<'a>, Error> {
     let links = sums::link_bytes(policy, mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;
-    let heap_links = (place == Place::Heap).then_some(heap_links);
-    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links, heap_links)
+    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links, place, heap_links)
 }
 
 /// Writes every vertex's frame into `output`.
