@@ -88,8 +88,8 @@ fn options(
     threads: u32,
 ) -> PyResult<Options> {
     let plain = |status, message| status_error(py, status, message, Details::default());
-    let chosen =
-        method_of(method, policy).ok_or_else(|| plain(TBASIS_ERROR_UNKNOWN_METHOD, format!("unknown method {method}")))?;
+    let chosen = method_of(method, policy)
+        .ok_or_else(|| plain(TBASIS_ERROR_UNKNOWN_METHOD, format!("unknown method {method}")))?;
     let policy = policy_of(policy, chosen).ok_or_else(|| {
         plain(
             TBASIS_ERROR_UNKNOWN_POLICY,

@@ -21,7 +21,6 @@ mod views;
 
 use pyo3::pymodule;
 
-
 #[pymodule]
 mod _native {
     use pyo3::prelude::*;
