@@ -101,7 +101,8 @@ typedef struct tbasis_mesh {
 
 // How to compute. All-zero (or a NULL pointer) means the defaults.
 typedef struct tbasis_options {
-  // A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`).
+  // A `TBASIS_METHOD_*` value; 0: the recommended default (`TBASIS_METHOD_ANGLE`; with policy
+  // `TBASIS_DEGENERATE_LEGACY`, the listing's method, `TBASIS_METHOD_LENGYEL`).
   uint32_t method;
   // A `TBASIS_DEGENERATE_*` value; 0: the method's default (`TBASIS_DEGENERATE_LEGACY` for
   // `TBASIS_METHOD_MIKKTSPACE`, `TBASIS_DEGENERATE_INHERIT` for the others).
