@@ -4,7 +4,7 @@
 use crate::entry::validate;
 use crate::kernel::error::Error;
 use crate::kernel::memory::{with_memory, Place};
-use crate::kernel::mesh::{Mesh, Output};
+use crate::kernel::mesh::{Mesh, Output, Target};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
 use crate::kernel::report::Report;
 use crate::kernel::views::strided::{Footprint, StridedMut};
@@ -132,18 +132,28 @@ pub(crate) fn generate_into(
 ) -> Result<(), Error> {
     // 1. Nothing is written unless every check passes: options, counts, overlaps.
     validate::validate(mesh, options, output, footprint(&scratch))?;
-    // 2. Working memory: the caller's scratch or a fresh zeroed allocation, laid out by the
-    //    pipeline, which then computes and writes.
+    run(mesh, options, Target::Vertices(output), scratch, report)
+}
+
+/// Step 2 of both calls, after validation: working memory (the caller's scratch or a fresh zeroed
+/// allocation, laid out by the pipeline), then the pipeline computes and writes.
+fn run(
+    mesh: &Mesh,
+    options: &Options,
+    target: Target,
+    scratch: Option<&mut [u8]>,
+    report: &mut Report,
+) -> Result<(), Error> {
     let pipeline = Pipeline::of(options);
     with_memory(
         scratch,
         pipeline.memory_for(mesh, options),
         |memory, place| match pipeline {
-            Pipeline::Listing => listing::generate(mesh, options, memory, place, output, report),
-            Pipeline::PerVertex => per_vertex::generate(mesh, options, memory, place, output, report),
+            Pipeline::Listing => listing::generate(mesh, options, memory, place, target, report),
+            Pipeline::PerVertex => per_vertex::generate(mesh, options, memory, place, target, report),
             Pipeline::Mikktspace => {
                 refuse_degenerate(mesh, options, memory)?;
-                mikktspace::generate_vertices(mesh, options, output, memory, report)
+                mikktspace::generate(mesh, options, memory, target, report)
             }
         },
     )
@@ -232,19 +242,7 @@ pub(crate) fn generate_corners_into(
     report: &mut Report,
 ) -> Result<(), Error> {
     validate::validate_corners(mesh, options, tangents, footprint(&scratch))?;
-    let pipeline = Pipeline::of(options);
-    with_memory(
-        scratch,
-        pipeline.memory_for(mesh, options),
-        |memory, place| match pipeline {
-            Pipeline::Listing => listing::generate_corners(mesh, options, memory, place, tangents, report),
-            Pipeline::PerVertex => per_vertex::generate_corners(mesh, options, memory, place, tangents, report),
-            Pipeline::Mikktspace => {
-                refuse_degenerate(mesh, options, memory)?;
-                mikktspace::generate_corners(mesh, options, tangents, memory, report)
-            }
-        },
-    )
+    run(mesh, options, Target::Corners(tangents), scratch, report)
 }
 
 /// Bytes of caller scratch a [`generate_with_scratch`] or [`generate_corners_with_scratch`] call on `mesh` with

@@ -409,6 +409,14 @@ impl<'a> Output<'a> {
     }
 }
 
+/// What a call writes: a frame per vertex, or per triangle corner.
+pub(crate) enum Target<'o, 'a> {
+    /// `generate`: per vertex, into an [`Output`].
+    Vertices(&'o mut Output<'a>),
+    /// `generate_corners`: per corner, `3t + k` for corner `k` of triangle `t`.
+    Corners(&'o mut StridedMut<'a, [f32; 4]>),
+}
+
 /// The output of one consecutive range of vertices.
 pub(crate) struct OutputPart<'a> {
     tangents: StridedMut<'a, [f32; 4]>,

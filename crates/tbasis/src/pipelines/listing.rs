@@ -9,12 +9,12 @@ use glam::Vec3;
 
 use crate::kernel::error::Error;
 use crate::kernel::memory::{self, Arena, Place};
-use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType};
+use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType, Target};
 use crate::kernel::options::Options;
 use crate::kernel::parallel;
 use crate::kernel::report::Report;
 use crate::kernel::sums::{self, count_flags, flag, slot_in, Scratch, VertexSums};
-use crate::kernel::views::strided::{Strided, StridedMut};
+use crate::kernel::views::strided::Strided;
 
 /// Bytes of working memory a call needs: the per-vertex sums (`tan1`, `tan2`) and flags,
 /// `vertex_count * 29 + 3`. `None` on overflow.
@@ -33,33 +33,24 @@ fn scratch_in<'a>(
     memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, place, no_links)
 }
 
-/// Writes every vertex's frame into `output`.
+/// Writes every vertex's frame, or every corner its vertex's, into `target`.
 pub(crate) fn generate(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
     place: Place,
-    output: &mut Output,
+    target: Target,
     report: &mut Report,
 ) -> Result<(), Error> {
     let mut no_links = Vec::new();
     let mut scratch = scratch_in(mesh, memory, place, &mut no_links)?;
-    run(mesh, options, &mut scratch, Some(output), report)
-}
-
-/// Writes every corner its vertex's frame.
-pub(crate) fn generate_corners(
-    mesh: &Mesh,
-    options: &Options,
-    memory: &mut [u8],
-    place: Place,
-    tangents: &mut StridedMut<[f32; 4]>,
-    report: &mut Report,
-) -> Result<(), Error> {
-    let mut no_links = Vec::new();
-    let mut scratch = scratch_in(mesh, memory, place, &mut no_links)?;
-    run(mesh, options, &mut scratch, None, report)?;
-    sums::write_corner_frames(mesh, options.threads, scratch.sums, tangents, |_, _| Ok(()))
+    match target {
+        Target::Vertices(output) => run(mesh, options, &mut scratch, Some(output), report),
+        Target::Corners(tangents) => {
+            run(mesh, options, &mut scratch, None, report)?;
+            sums::write_corner_frames(mesh, options.threads, scratch.sums, tangents, |_, _| Ok(()))
+        }
+    }
 }
 
 /// Both loops of the listing, each vertex's frame written into `output` or, without one, kept in

@@ -30,7 +30,7 @@ use self::tspace::Inputs;
 use self::weld::WeldScratch;
 use crate::kernel::error::Error;
 use crate::kernel::memory::{bytes_of, Arena};
-use crate::kernel::mesh::{Mesh, Output};
+use crate::kernel::mesh::{Mesh, Output, Target};
 use crate::kernel::options::{DegeneratePolicy, Options};
 use crate::kernel::report::Report;
 use crate::kernel::vector::{Packed, Vec3};
@@ -148,8 +148,22 @@ pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<
     bytes_of(|a| Buffers::take(a, vertex_count, corner_count).map(|_| ())).ok()
 }
 
+/// Writes mikktspace.c's frame for every corner, or each vertex its first corner's, into `target`.
+pub(crate) fn generate(
+    mesh: &Mesh,
+    options: &Options,
+    bytes: &mut [u8],
+    target: Target,
+    report: &mut Report,
+) -> Result<(), Error> {
+    match target {
+        Target::Vertices(output) => generate_vertices(mesh, options, output, bytes, report),
+        Target::Corners(tangents) => generate_corners(mesh, options, tangents, bytes, report),
+    }
+}
+
 /// Writes mikktspace.c's frame for every corner.
-pub(crate) fn generate_corners(
+fn generate_corners(
     mesh: &Mesh,
     options: &Options,
     output: &mut StridedMut<[f32; 4]>,
@@ -172,7 +186,7 @@ pub(crate) fn generate_corners(
 
 /// Writes each vertex the frame of its first corner; a vertex no triangle uses gets the fallback
 /// frame built from its normal.
-pub(crate) fn generate_vertices(
+fn generate_vertices(
     mesh: &Mesh,
     options: &Options,
     output: &mut Output,

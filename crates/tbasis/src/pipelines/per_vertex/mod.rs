@@ -19,11 +19,10 @@ pub(crate) mod resolve;
 
 use crate::kernel::error::Error;
 use crate::kernel::memory::{self, Arena, Place};
-use crate::kernel::mesh::{Mesh, Output, OutputPart};
+use crate::kernel::mesh::{Mesh, Output, OutputPart, Target};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
 use crate::kernel::report::Report;
 use crate::kernel::sums::{self, count_flags, Scratch};
-use crate::kernel::views::strided::StridedMut;
 use crate::kernel::{frame, parallel, simd};
 
 /// Bytes of working memory a call needs in memory from `place`: the per-vertex sums and flags,
@@ -53,33 +52,24 @@ fn scratch_in<'a>(
     memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links, place, heap_links)
 }
 
-/// Writes every vertex's frame into `output`.
+/// Writes every vertex's frame into `target`, or every corner's ([`corners`]).
 pub(crate) fn generate(
     mesh: &Mesh,
     options: &Options,
     memory: &mut [u8],
     place: Place,
-    output: &mut Output,
+    target: Target,
     report: &mut Report,
 ) -> Result<(), Error> {
     let mut heap_links = Vec::new();
     let mut scratch = scratch_in(mesh, options.degenerate_policy, memory, place, &mut heap_links)?;
-    resolve_vertices(mesh, options, &mut scratch, Some(output), report)
-}
-
-/// Writes every corner's frame into `tangents` ([`corners`]).
-pub(crate) fn generate_corners(
-    mesh: &Mesh,
-    options: &Options,
-    memory: &mut [u8],
-    place: Place,
-    tangents: &mut StridedMut<[f32; 4]>,
-    report: &mut Report,
-) -> Result<(), Error> {
-    let mut heap_links = Vec::new();
-    let mut scratch = scratch_in(mesh, options.degenerate_policy, memory, place, &mut heap_links)?;
-    resolve_vertices(mesh, options, &mut scratch, None, report)?;
-    corners::write(mesh, options, &scratch, tangents)
+    match target {
+        Target::Vertices(output) => resolve_vertices(mesh, options, &mut scratch, Some(output), report),
+        Target::Corners(tangents) => {
+            resolve_vertices(mesh, options, &mut scratch, None, report)?;
+            corners::write(mesh, options, &scratch, tangents)
+        }
+    }
 }
 
 /// Policy REJECT's test for a pipeline that has none of its own (MIKKTSPACE): fails with
