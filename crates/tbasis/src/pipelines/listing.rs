@@ -22,17 +22,6 @@ pub(crate) fn memory_bytes(vertex_count: usize) -> Option<usize> {
     memory::vertex_arrays_bytes(vertex_count, 0, Place::Caller)
 }
 
-/// The listing's arrays laid out in `memory` (at least [`memory_bytes`] long) from `place`; it
-/// has no adjacency, so `no_links` stays empty.
-fn scratch_in<'a>(
-    mesh: &Mesh,
-    memory: &'a mut [u8],
-    place: Place,
-    no_links: &'a mut Vec<u8>,
-) -> Result<Scratch<'a>, Error> {
-    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, place, no_links)
-}
-
 /// Writes every vertex's frame, or every corner its vertex's, into `target`.
 pub(crate) fn generate(
     mesh: &Mesh,
@@ -42,8 +31,9 @@ pub(crate) fn generate(
     target: Target,
     report: &mut Report,
 ) -> Result<(), Error> {
+    // The listing has no adjacency: nothing is reserved apart.
     let mut no_links = Vec::new();
-    let mut scratch = scratch_in(mesh, memory, place, &mut no_links)?;
+    let mut scratch = memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, place, &mut no_links)?;
     match target {
         Target::Vertices(output) => run(mesh, options, &mut scratch, Some(output), report),
         Target::Corners(tangents) => {
