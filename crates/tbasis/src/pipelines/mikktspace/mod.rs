@@ -12,10 +12,16 @@ mod attributes;
 mod corner_terms;
 mod faces;
 mod groups;
+mod last_run;
 mod neighbors;
+#[cfg(test)]
+mod path_tests;
 mod repair;
 mod tspace;
+mod value_weld;
 mod weld;
+#[cfg(test)]
+mod weld_tests;
 
 use core::sync::atomic::{AtomicBool, Ordering};
 
@@ -39,6 +45,15 @@ use crate::kernel::{frame, parallel};
 
 /// "No index": no neighbour, no group, no corner yet.
 pub(crate) const NONE: u32 = u32::MAX;
+
+/// How a call reproduced mikktspace.c's weld (the tests count which meshes take each way).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum WeldPath {
+    /// By value in linear time ([`value_weld`], [`last_run`]).
+    ByValue,
+    /// By replaying mikktspace.c's splitting ([`weld`]), and its edge sort's last run.
+    Replayed,
+}
 
 /// The largest corner or vertex count: indices stay clear of the sentinels.
 const MAX_COUNT: usize = (u32::MAX / 4) as usize;
@@ -170,7 +185,7 @@ fn generate_corners(
     bytes: &mut [u8],
     report: &mut Report,
 ) -> Result<(), Error> {
-    let buffers = compute(mesh, options, bytes, report)?;
+    let (buffers, _) = compute(mesh, options, bytes, report)?;
     let write = |first: usize, mut part: StridedMut<[f32; 4]>| {
         for i in 0..part.len() {
             part.set(i, frame(&buffers, first + i));
@@ -193,7 +208,7 @@ fn generate_vertices(
     bytes: &mut [u8],
     report: &mut Report,
 ) -> Result<(), Error> {
-    let buffers = compute(mesh, options, bytes, report)?;
+    let (buffers, _) = compute(mesh, options, bytes, report)?;
     let mut out = output.whole();
     for (v, &first) in buffers.slots[..mesh.vertex_count()].iter().enumerate() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
@@ -223,15 +238,21 @@ fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
 }
 
 /// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
-/// (in `slots`) every vertex's first corner. Fails before anything reaches the caller's output.
-fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut Report) -> Result<Buffers<'a>, Error> {
+/// (in `slots`) every vertex's first corner, and how the weld was done. Fails before anything
+/// reaches the caller's output.
+fn compute<'a>(
+    mesh: &Mesh,
+    options: &Options,
+    bytes: &'a mut [u8],
+    report: &mut Report,
+) -> Result<(Buffers<'a>, WeldPath), Error> {
     if mesh.vertex_count() == 0 {
         // No scratch was asked for: any index is out of range, or there is nothing to do.
         if mesh.corner_count() > 0 {
             return Err(mesh.index_error());
         }
         *report = Report::default();
-        return Buffers::take(&mut Arena::Count(0), 0, 0);
+        return Ok((Buffers::take(&mut Arena::Count(0), 0, 0)?, WeldPath::ByValue));
     }
     let mut buffers = Buffers::take(&mut Arena::Carve(bytes), mesh.vertex_count(), mesh.corner_count())?;
     let (vertex_count, corner_count) = (mesh.vertex_count(), mesh.corner_count());
@@ -269,29 +290,38 @@ fn compute<'a>(mesh: &Mesh, options: &Options, bytes: &'a mut [u8], report: &mut
         return Err(mesh.index_error());
     }
     // 2. mikktspace.c proper, steps 3 to 10 (policy REJECT refused a degenerate mesh before).
-    if corner_count > 0 {
-        solve(&attributes, options.threads, &mut buffers, report)?;
-    }
+    let path = if corner_count > 0 {
+        solve(&attributes, options.threads, &mut buffers, report)?
+    } else {
+        WeldPath::ByValue
+    };
     // 11. Policies other than LEGACY replace what no frame can be; then per-vertex counts.
     if options.degenerate_policy != DegeneratePolicy::Legacy {
         repair::repair(mesh, options.degenerate_policy, buffers.tangents, buffers.slots, report);
         report.abnormal_normals = frame::count_abnormal_normals(mesh);
     }
     count_vertices(mesh, options.threads, &mut buffers, report);
-    Ok(buffers)
+    Ok((buffers, path))
 }
 
 /// Steps 3 to 10: mikktspace.c proper.
-fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Report) -> Result<(), Error> {
+fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Report) -> Result<WeldPath, Error> {
     let corner_count = b.welded.len();
     let triangles = corner_count / 3;
 
     // 3. Weld corners equal in position, normal and texture coordinate
-    //    (GenerateSharedVerticesIndexList).
+    //    (GenerateSharedVerticesIndexList): by value where that finds mikktspace.c's welded
+    //    vertices and the order of its last edges cannot matter; else by replaying its splitting.
     let vertex_count = attributes.mesh.vertex_count();
-    let mut phase = Arena::Carve(&mut *b.phase);
-    let weld_scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
-    let welded_count = weld::weld(attributes, threads, b.welded, b.source, b.values, weld_scratch);
+    let by_value = weld_by_value(attributes, b);
+    let welded_count = match by_value {
+        Some(count) => count,
+        None => {
+            let mut phase = Arena::Carve(&mut *b.phase);
+            let weld_scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
+            weld::weld(attributes, threads, b.welded, b.source, b.values, weld_scratch)
+        }
+    };
     let ranges = parallel::item_ranges(threads, welded_count, 1);
     let ends = ranges.ends();
     let parts = parallel::split(&mut b.attributes[..welded_count], ends, 1);
@@ -320,6 +350,11 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             *id = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
         }
     });
+    let path = match by_value {
+        Some(_) => settle_last_run(attributes, threads, b, welded_count, good)?,
+        None => WeldPath::Replayed,
+    };
+    let packed = &b.attributes[..welded_count];
     let order = &b.order[..good];
     let ids = &b.ids[..good];
 
@@ -341,7 +376,8 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             faces::derivatives(packed, welded, &order[first..end], s, t, flags)
         });
     };
-    let (phase, values, neighbors) = (&mut *b.phase, &b.values[..welded_count], &mut b.neighbors[..good]);
+    let values = (path == WeldPath::Replayed).then_some(&b.values[..welded_count]);
+    let (phase, neighbors) = (&mut *b.phase, &mut b.neighbors[..good]);
     let mut pairing = move || -> Result<(), Error> {
         let mut phase = Arena::Carve(phase);
         let mut edges = edge_scratch(&mut phase, corner_count)?;
@@ -457,7 +493,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     // 10. Degenerate triangles copy the first good corner of the same welded vertex
     //     (DegenEpilogue).
     if good == triangles {
-        return Ok(());
+        return Ok(path);
     }
     let first_good = &mut b.table[..welded_count];
     first_good.fill(NONE);
@@ -480,7 +516,50 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             }
         }
     }
-    Ok(())
+    Ok(path)
+}
+
+/// Step 3 by value ([`value_weld`]): replaces each corner's vertex in `welded` by its welded
+/// vertex, with each vertex's in `slots`, and fills `source`; or leaves `welded` as it was and
+/// returns `None`. Uses `table` as scratch.
+fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
+    let class = &mut b.slots[..attributes.mesh.vertex_count()];
+    let count = value_weld::classes(attributes, b.welded, class, b.source, b.table)?;
+    for v in b.welded.iter_mut() {
+        *v = class[*v as usize];
+    }
+    Some(count)
+}
+
+/// After a weld by value: whether the last run of the edge sort can be left out ([`last_run`]);
+/// if not, replays the splitting to find every welded vertex's index, into `values` (the weld's
+/// numbering is the same either way). Returns how the weld was done.
+fn settle_last_run(
+    attributes: &Attributes,
+    threads: u32,
+    b: &mut Buffers,
+    welded_count: usize,
+    good: usize,
+) -> Result<WeldPath, Error> {
+    let (vertex_count, corner_count) = (attributes.mesh.vertex_count(), b.welded.len());
+    let mut phase = Arena::Carve(&mut *b.phase);
+    let memory = last_run::Memory {
+        lo: &mut b.values[..welded_count],
+        hi: &mut b.table[..welded_count],
+        weld: WeldScratch::take(&mut phase, vertex_count, corner_count)?,
+    };
+    let class = &b.slots[..vertex_count];
+    let ids = &b.ids[..good];
+    if last_run::is_trivial(attributes, threads, b.welded, class, b.source, ids, memory) {
+        return Ok(WeldPath::ByValue);
+    }
+    for (c, slot) in b.welded.iter_mut().enumerate() {
+        *slot = attributes.mesh.indices.corner(c) as u32;
+    }
+    let mut phase = Arena::Carve(&mut *b.phase);
+    let scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
+    weld::weld(attributes, threads, b.welded, b.source, b.values, scratch);
+    Ok(WeldPath::Replayed)
 }
 
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,

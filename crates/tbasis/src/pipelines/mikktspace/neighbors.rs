@@ -28,8 +28,21 @@ pub(crate) struct EdgeScratch<'a> {
 
 /// Writes `neighbors[g][k]`: the good triangle across edge `k` (from corner `k` to `k + 1`) of good
 /// triangle `g`, or [`NONE`]. `ids[g]` are the welded vertices of good triangle `g`, `values[id]`
-/// mikktspace.c's index for welded vertex `id`.
-pub(crate) fn pair_edges(ids: &[[u32; 3]], values: &[u32], neighbors: &mut [[u32; 3]], scratch: EdgeScratch) {
+/// mikktspace.c's index for welded vertex `id`; `None` when the last run is known to hold at most
+/// the two sides of one edge ([`super::last_run`]), whose order changes nothing.
+pub(crate) fn pair_edges(
+    ids: &[[u32; 3]],
+    values: Option<&[u32]>,
+    neighbors: &mut [[u32; 3]],
+    mut scratch: EdgeScratch,
+) {
+    let ends = |edge: u32| edge_ends(ids, edge);
+    neighbors.fill([NONE; 3]);
+    let edge_count = 3 * ids.len();
+    if edge_count == 0 {
+        return;
+    }
+    let last = values.map(|values| (values, replay_last_run(ids, values, neighbors, &mut scratch)));
     let EdgeScratch {
         starts,
         entries,
@@ -38,48 +51,12 @@ pub(crate) fn pair_edges(ids: &[[u32; 3]], values: &[u32], neighbors: &mut [[u32
         tail,
         stamp,
     } = scratch;
-    let ends = |edge: u32| {
-        let (g, k) = (edge as usize / 3, edge as usize % 3);
-        (ids[g][k], ids[g][(k + 1) % 3])
-    };
-    let smaller_value = |edge: u32| {
-        let (a, b) = ends(edge);
-        values[a as usize].min(values[b as usize])
-    };
-    let larger_value = |edge: u32| {
-        let (a, b) = ends(edge);
-        values[a as usize].max(values[b as usize])
-    };
-    neighbors.fill([NONE; 3]);
-    let edge_count = 3 * ids.len();
-    if edge_count == 0 {
-        return;
-    }
 
-    // 1. The edges of the largest i0, in the order mikktspace.c walks them.
-    let last = (0..edge_count as u32).map(smaller_value).max().unwrap_or(0);
-    let order = &mut entries[..edge_count];
-    let keys = &mut next[..edge_count];
-    for (edge, (slot, key)) in (0u32..).zip(order.iter_mut().zip(keys.iter_mut())) {
-        *slot = edge;
-        *key = smaller_value(edge);
-    }
-    // The quicksort's pending parts live in arrays the second step fills later.
-    quicksort_toward(keys, order, last, [&mut *head, &mut *tail, &mut *stamp]);
-    let first_of_last = keys.iter().rposition(|&key| key != last).map_or(0, |p| p + 1);
-    let run = &mut order[first_of_last..];
-    // The third pass sorts each run of equal i1 by triangle, all but the very last one.
-    let mut start = 0;
-    for i in 1..run.len() {
-        if larger_value(run[i]) != larger_value(run[start]) {
-            run[start..i].sort_unstable();
-            start = i;
-        }
-    }
-    walk(run, &ends, &larger_value, neighbors);
-
-    // 2. Every other edge: bucketed by its smaller welded vertex, in triangle order within a bucket.
-    let in_last_run = |edge: u32| smaller_value(edge) == last;
+    // Every other edge: bucketed by its smaller welded vertex, in triangle order within a bucket.
+    let in_last_run = |edge: u32| {
+        let (a, b) = ends(edge);
+        last.is_some_and(|(values, last)| values[a as usize].min(values[b as usize]) == last)
+    };
     starts.fill(0);
     for edge in 0..edge_count as u32 {
         let (a, b) = ends(edge);
@@ -131,6 +108,58 @@ pub(crate) fn pair_edges(ids: &[[u32; 3]], values: &[u32], neighbors: &mut [[u32
         }
         begin = end;
     }
+}
+
+/// The welded vertices of edge `edge` (corner `edge % 3` to the next of good triangle `edge / 3`).
+#[inline(always)]
+fn edge_ends(ids: &[[u32; 3]], edge: u32) -> (u32, u32) {
+    let (g, k) = (edge as usize / 3, edge as usize % 3);
+    (ids[g][k], ids[g][(k + 1) % 3])
+}
+
+/// Pairs the edges of the largest `i0` in the order mikktspace.c walks them, and returns that
+/// `i0`.
+fn replay_last_run(ids: &[[u32; 3]], values: &[u32], neighbors: &mut [[u32; 3]], scratch: &mut EdgeScratch) -> u32 {
+    let EdgeScratch {
+        entries,
+        next,
+        head,
+        tail,
+        stamp,
+        ..
+    } = scratch;
+    let ends = |edge: u32| edge_ends(ids, edge);
+    let smaller_value = |edge: u32| {
+        let (a, b) = ends(edge);
+        values[a as usize].min(values[b as usize])
+    };
+    let larger_value = |edge: u32| {
+        let (a, b) = ends(edge);
+        values[a as usize].max(values[b as usize])
+    };
+    let edge_count = 3 * ids.len();
+    let last = (0..edge_count as u32).map(smaller_value).max().unwrap_or(0);
+    let order = &mut entries[..edge_count];
+    let keys = &mut next[..edge_count];
+    for (edge, (slot, key)) in (0u32..).zip(order.iter_mut().zip(keys.iter_mut())) {
+        *slot = edge;
+        *key = smaller_value(edge);
+    }
+    // The quicksort's pending parts live in arrays the second step fills later.
+    quicksort_toward(keys, order, last, [&mut **head, &mut **tail, &mut **stamp]);
+    let first_of_last = keys.iter().rposition(|&key| key != last).map_or(0, |p| p + 1);
+    let run = &mut order[first_of_last..];
+    // The third pass sorts each run of equal i1 by triangle, all but the very last one.
+    let mut start = 0;
+    for i in 1..run.len() {
+        if larger_value(run[i]) != larger_value(run[start]) {
+            run[start..i].sort_unstable();
+            start = i;
+        }
+    }
+    walk(run, &ends, &larger_value, neighbors);
+
+    last
 }
 
 /// Records the triangles of edges `a` and `b` as neighbours across them.

@@ -73,8 +73,84 @@ pub(crate) fn weld(
     corners: &mut [u32],
     source: &mut [u32],
     values: &mut [u32],
-    scratch: WeldScratch,
+    mut scratch: WeldScratch,
 ) -> usize {
+    let corner_count = corners.len();
+    let vertices = &*corners;
+    let filled = split_cells(attributes, threads, corner_count, &|c| vertices[c], None, &mut scratch);
+    debug_assert_eq!(filled, Some(corner_count));
+    let WeldScratch {
+        entries,
+        representative,
+        number,
+        ..
+    } = scratch;
+
+    // 4. Number the welded vertices in order of first use.
+    for &[corner, _, first] in entries.iter() {
+        representative[corner as usize] = first;
+    }
+    number.fill(NONE);
+    let mut count = 0u32;
+    for c in 0..corner_count {
+        let first = representative[c] as usize;
+        if number[first] == NONE {
+            number[first] = count;
+            // `first` has not been renumbered yet: either it is `c`, or it lies ahead.
+            source[count as usize] = corners[first];
+            values[count as usize] = value_of(first);
+            count += 1;
+        }
+        corners[c] = number[first];
+    }
+    count as usize
+}
+
+/// mikktspace.c's index for corner `c`: `4 * face + corner` (`MakeIndex`).
+#[inline(always)]
+pub(crate) fn value_of(c: usize) -> u32 {
+    (4 * (c / 3) + c % 3) as u32
+}
+
+/// Cells of the grid holding a wanted vertex, and the most corners they may hold together.
+pub(crate) struct Wanted<'w> {
+    pub vertex: &'w (dyn Fn(u32) -> bool + Sync),
+    pub corner_limit: usize,
+}
+
+/// mikktspace.c's representative corner of each of the `corner_count` corners (corner `c` of
+/// vertex `vertex_of(c)`) in the grid cells holding a vertex `wanted` names, by replaying
+/// `MergeVertsFast` on those cells alone: cells are welded independently. Calls
+/// `found(corner, representative)` for each. `None` when those cells hold more than
+/// `wanted.corner_limit` corners (nothing replayed).
+pub(crate) fn representatives(
+    attributes: &Attributes,
+    threads: u32,
+    corner_count: usize,
+    vertex_of: &(impl Fn(usize) -> u32 + Sync),
+    wanted: Wanted,
+    mut scratch: WeldScratch,
+    mut found: impl FnMut(u32, u32),
+) -> Option<()> {
+    let filled = split_cells(attributes, threads, corner_count, vertex_of, Some(wanted), &mut scratch)?;
+    for &[corner, _, first] in &scratch.entries[..filled] {
+        found(corner, first);
+    }
+    Some(())
+}
+
+/// Steps 1 to 3 of the weld: the grid, then each cell's corners gathered in corner order and split
+/// and welded (`MergeVertsFast`), for every cell or those `wanted` selects. Leaves, in
+/// `scratch.entries[..n]`, (corner, vertex or [`NONE`], representative corner) of the `n` corners
+/// those cells hold, and returns `n`; `None` past `wanted`'s corner limit.
+fn split_cells(
+    attributes: &Attributes,
+    threads: u32,
+    corner_count: usize,
+    vertex_of: &(impl Fn(usize) -> u32 + Sync),
+    wanted: Option<Wanted>,
+    scratch: &mut WeldScratch,
+) -> Option<usize> {
     let WeldScratch {
         cells,
         hashes,
@@ -83,21 +159,19 @@ pub(crate) fn weld(
         positions,
         entries,
         stack,
-        representative,
-        number,
+        ..
     } = scratch;
-    let corner_count = corners.len();
     let position = |v: u32| attributes.position(v);
 
     // 1. The bounding box.
-    let (min, max) = bounding_box(threads, corners, &position);
+    let (min, max) = bounding_box(threads, corner_count, &|c| position(vertex_of(c)));
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
 
-    // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads); how many
-    //    corners each cell holds.
+    // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads); the cells
+    //    wanted; how many corners each of them holds.
     let vertex_ranges = parallel::item_ranges(threads, cells.len(), 1);
     let ends = vertex_ranges.ends();
-    let parts = parallel::split(&mut *cells, ends, 1).zip(parallel::split(&mut *hashes, ends, 1));
+    let parts = parallel::split(cells, ends, 1).zip(parallel::split(hashes, ends, 1));
     parallel::run_ranges(ends, parts, |first, (cells, hashes)| {
         for (v, (cell, hash)) in (first..).zip(cells.iter_mut().zip(hashes.iter_mut())) {
             let key = attributes.key(v as u32);
@@ -106,13 +180,25 @@ pub(crate) fn weld(
             *hash = hash_of(&key.map(canonical_bits));
         }
     });
-    let (cells, hashes, corners_in) = (&*cells, &*hashes, &*corners);
+    let (cells, hashes) = (&**cells, &**hashes);
+    let cell_of = |v: u32| (cells[v as usize] & !UNEQUAL) as usize;
+    let mut selected = [wanted.is_none(); GRID_CELLS];
+    if let Some(wanted) = &wanted {
+        for v in (0..cells.len() as u32).filter(|&v| (wanted.vertex)(v)) {
+            selected[cell_of(v)] = true;
+        }
+    }
     starts.fill(0);
-    for &v in corners_in {
-        starts[(cells[v as usize] & !UNEQUAL) as usize + 1] += 1;
+    for c in 0..corner_count {
+        let k = cell_of(vertex_of(c));
+        starts[k + 1] += u32::from(selected[k]);
     }
     for k in 0..GRID_CELLS {
         starts[k + 1] += starts[k];
+    }
+    let filled = starts[GRID_CELLS] as usize;
+    if wanted.is_some_and(|w| filled > w.corner_limit) {
+        return None;
     }
     cursors.copy_from_slice(&starts[..GRID_CELLS]);
 
@@ -123,9 +209,10 @@ pub(crate) fn weld(
     let bounds = Ranges::from_ends(ends.iter().map(|&cell| starts[cell] as usize));
     let bounds = bounds.ends();
     let first_cells = core::iter::once(0).chain(ends.iter().copied());
-    let parts = parallel::split(positions, bounds, 1)
-        .zip(parallel::split(entries, bounds, 1))
-        .zip(parallel::split(stack, bounds, 1))
+    let starts = &**starts;
+    let parts = parallel::split(&mut positions[..filled], bounds, 1)
+        .zip(parallel::split(&mut entries[..filled], bounds, 1))
+        .zip(parallel::split(&mut stack[..filled], bounds, 1))
         .zip(parallel::split(cursors, ends, 1))
         .zip(first_cells.zip(ends.iter().copied()));
     parallel::run_ranges(
@@ -133,10 +220,11 @@ pub(crate) fn weld(
         parts,
         |first, ((((positions, entries), stack), cursors), (first_cell, end_cell))| {
             let owned = first_cell..end_cell;
-            for (c, &v) in corners_in.iter().enumerate() {
+            for c in 0..corner_count {
+                let v = vertex_of(c);
                 let cell = cells[v as usize];
                 let k = (cell & !UNEQUAL) as usize;
-                if !owned.contains(&k) {
+                if !owned.contains(&k) || !selected[k] {
                     continue;
                 }
                 let cursor = &mut cursors[k - first_cell];
@@ -155,25 +243,7 @@ pub(crate) fn weld(
             }
         },
     );
-
-    // 4. Number the welded vertices in order of first use.
-    for &[corner, _, first] in entries.iter() {
-        representative[corner as usize] = first;
-    }
-    number.fill(NONE);
-    let mut count = 0u32;
-    for c in 0..corner_count {
-        let first = representative[c] as usize;
-        if number[first] == NONE {
-            number[first] = count;
-            // `first` has not been renumbered yet: either it is `c`, or it lies ahead.
-            source[count as usize] = corners[first];
-            values[count as usize] = (4 * (first / 3) + first % 3) as u32;
-            count += 1;
-        }
-        corners[c] = number[first];
-    }
-    count as usize
+    Some(filled)
 }
 
 /// The box mikktspace.c's `if ... else if` updates find, from the first corner's position: a
@@ -181,15 +251,16 @@ pub(crate) fn weld(
 /// nothing and a `NaN` in the first corner stays; of equal values (a -0 and a +0) the first stays.
 /// Ranges of corners on separate threads, each from its first value that is not `NaN`, joined in
 /// order with the same strict comparisons: the same box.
-fn bounding_box(threads: u32, corners: &[u32], position: &(impl Fn(u32) -> Vec3 + Sync)) -> (Vec3, Vec3) {
-    let ranges = parallel::item_ranges(threads, corners.len(), 3);
+/// `position(c)` is corner `c`'s position.
+fn bounding_box(threads: u32, corner_count: usize, position: &(impl Fn(usize) -> Vec3 + Sync)) -> (Vec3, Vec3) {
+    let ranges = parallel::item_ranges(threads, corner_count, 3);
     let ends = ranges.ends();
     let mut boxes = [[[f32::NAN; 3]; 2]; parallel::MAX_RANGES];
     let starts = core::iter::once(0).chain(ends.iter().copied());
     let parts = starts.zip(ends).zip(boxes.iter_mut());
     parallel::run_ranges(ends, parts, |_, ((start, &end), [min, max])| {
-        for &v in &corners[start..end] {
-            let p = position(v);
+        for c in start..end {
+            let p = position(c);
             for axis in 0..3 {
                 if min[axis].is_nan() {
                     (min[axis], max[axis]) = (p[axis], p[axis]);
@@ -212,7 +283,7 @@ fn bounding_box(threads: u32, corners: &[u32], position: &(impl Fn(u32) -> Vec3 
             }
         }
     }
-    let first = position(corners[0]);
+    let first = position(0);
     for axis in 0..3 {
         if first[axis].is_nan() {
             (min[axis], max[axis]) = (first[axis], first[axis]);
@@ -242,7 +313,7 @@ fn cell_ranges(threads: u32, starts: &[u32]) -> Ranges {
 }
 
 /// A multiplicative hash of the eight canonical floats.
-fn hash_of(bits: &[u32; 8]) -> u32 {
+pub(crate) fn hash_of(bits: &[u32; 8]) -> u32 {
     let mut h = 0u64;
     for &b in bits {
         h = (h ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
@@ -252,7 +323,7 @@ fn hash_of(bits: &[u32; 8]) -> u32 {
 
 /// The bits of `x`, with -0 as +0 so that values equal under `==` have equal bits.
 #[inline(always)]
-fn canonical_bits(x: f32) -> u32 {
+pub(crate) fn canonical_bits(x: f32) -> u32 {
     if x == 0.0 {
         0
     } else {
@@ -492,7 +563,7 @@ mod tests {
             let expected = one_pass(&ordered);
             let bits = |(min, max): (Vec3, Vec3)| (min.map(f32::to_bits), max.map(f32::to_bits));
             for threads in [1, 2, 8] {
-                let found = bounding_box(threads, &corners, &|v: u32| points[v as usize]);
+                let found = bounding_box(threads, corners.len(), &|c| points[corners[c] as usize]);
                 assert_eq!(bits(found), bits(expected), "case {case}, threads={threads}");
             }
         }

@@ -1,0 +1,165 @@
+//! The weld by value ([`super::value_weld`]) and the last-run test ([`super::last_run`]) against
+//! the replayed weld ([`super::weld`]), on random meshes built to meet each way they can differ:
+//! duplicate vertices, +0 against -0, `NaN`, coordinates near the float range's end, triangles
+//! with equal positions, and vertices shared far apart in the triangle order.
+#![forbid(unsafe_code)]
+
+use super::attributes::Attributes;
+use super::weld::{self, WeldScratch};
+use super::{last_run, value_weld, NONE};
+use crate::kernel::memory::{bytes_of, Arena};
+use crate::kernel::mesh::Mesh;
+use crate::kernel::test_rng::TestRng;
+use crate::kernel::vector::equal;
+
+/// A random mesh whose attributes come from a small palette, so that vertices repeat.
+struct Case {
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    texcoords: Vec<[f32; 2]>,
+    indices: Vec<u32>,
+}
+
+fn case(rng: &mut TestRng) -> Case {
+    let palette: &[f32] = match rng.below(4) {
+        0 => &[0.0, 1.0, 2.0, 0.5],
+        1 => &[0.0, -0.0, 1.0, 2.0],
+        2 => &[0.0, 1.0, f32::NAN, 3.0],
+        _ => &[0.0, 1.0, 2e38, -3e38],
+    };
+    let pick = |rng: &mut TestRng| palette[rng.below(palette.len())];
+    let vertex_count = 3 + rng.below(40);
+    let mut case = Case {
+        positions: (0..vertex_count).map(|_| [pick(rng), pick(rng), pick(rng)]).collect(),
+        normals: (0..vertex_count)
+            .map(|_| [0.0, 0.0, if rng.chance(50) { 1.0 } else { pick(rng) }])
+            .collect(),
+        texcoords: (0..vertex_count).map(|_| [pick(rng), 0.5]).collect(),
+        indices: (0..3 * (1 + rng.below(60)))
+            .map(|_| rng.below(vertex_count) as u32)
+            .collect(),
+    };
+    // Exact copies of other vertices, as exporters write them.
+    for v in 0..vertex_count {
+        if rng.chance(30) {
+            let from = rng.below(vertex_count);
+            case.positions[v] = case.positions[from];
+            case.normals[v] = case.normals[from];
+            case.texcoords[v] = case.texcoords[from];
+        }
+    }
+    case
+}
+
+/// The replayed weld: each corner's welded vertex, a vertex of each, and each one's index.
+fn replayed(attributes: &Attributes, indices: &[u32]) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+    let (v, c) = (attributes.mesh.vertex_count(), indices.len());
+    let mut memory = vec![0u8; bytes_of(|a| WeldScratch::take(a, v, c).map(|_| ())).unwrap()];
+    let scratch = WeldScratch::take(&mut Arena::Carve(&mut memory), v, c).unwrap();
+    let (mut welded, mut source, mut values) = (indices.to_vec(), vec![0; c], vec![0; c]);
+    let count = weld::weld(attributes, 1, &mut welded, &mut source, &mut values, scratch);
+    source.truncate(count);
+    values.truncate(count);
+    (welded, source, values)
+}
+
+#[test]
+fn welding_by_value_finds_the_replayed_weld_or_declines() {
+    let mut rng = TestRng(0xC0FFEE);
+    let mut by_value = 0;
+    for round in 0..3000 {
+        let case = case(&mut rng);
+        let mesh = Mesh::new(&case.positions[..], &case.normals[..])
+            .with_texcoords(&case.texcoords[..])
+            .with_indices(&case.indices[..]);
+        let attributes = Attributes {
+            mesh: &mesh,
+            flip_v: false,
+        };
+        let (welded, source, _) = replayed(&attributes, &case.indices);
+        let v = case.positions.len();
+        let (mut class, mut ours, mut table) = (vec![0; v], vec![0; v], vec![0; 2 * v + 2]);
+        let Some(count) = value_weld::classes(&attributes, &case.indices, &mut class, &mut ours, &mut table) else {
+            continue;
+        };
+        by_value += 1;
+        assert_eq!(count, source.len(), "round {round}: welded vertex count");
+        let ours_welded: Vec<u32> = case.indices.iter().map(|&v| class[v as usize]).collect();
+        assert_eq!(ours_welded, welded, "round {round}: numbering");
+        for (id, (&a, &b)) in ours.iter().zip(&source).enumerate().take(count) {
+            let bits = |v: u32| attributes.key(v).map(f32::to_bits);
+            assert_eq!(bits(a), bits(b), "round {round}: welded vertex {id}'s attributes");
+        }
+        assert!(class
+            .iter()
+            .enumerate()
+            .all(|(v, &c)| (c == NONE) != case.indices.contains(&(v as u32))));
+    }
+    // Not vacuous: most cases without NaN or mixed zeros weld by value.
+    assert!(by_value > 1000, "{by_value} of 3000 welded by value");
+}
+
+#[test]
+fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
+    let mut rng = TestRng(0xBEEF);
+    let (mut trivial, mut truly) = (0, 0);
+    for round in 0..3000 {
+        let case = case(&mut rng);
+        let mesh = Mesh::new(&case.positions[..], &case.normals[..])
+            .with_texcoords(&case.texcoords[..])
+            .with_indices(&case.indices[..]);
+        let attributes = Attributes {
+            mesh: &mesh,
+            flip_v: false,
+        };
+        let v = case.positions.len();
+        let (mut class, mut source, mut table) = (vec![0; v], vec![0; v], vec![0; 2 * v + 2]);
+        let Some(count) = value_weld::classes(&attributes, &case.indices, &mut class, &mut source, &mut table) else {
+            continue;
+        };
+        let welded: Vec<u32> = case.indices.iter().map(|&v| class[v as usize]).collect();
+        let position = |id: u32| attributes.position(source[id as usize]);
+        let ids: Vec<[u32; 3]> = welded
+            .chunks(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .filter(|&[a, b, c]| {
+                !(equal(position(a), position(b)) || equal(position(a), position(c)) || equal(position(b), position(c)))
+            })
+            .collect();
+        if ids.is_empty() {
+            continue;
+        }
+        // The truth, from every welded vertex's index.
+        let (_, _, values) = replayed(&attributes, &case.indices);
+        let edges = ids.iter().flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)]);
+        let key = |(a, b): (u32, u32)| {
+            let (x, y) = (values[a as usize], values[b as usize]);
+            (x.min(y), x.max(y))
+        };
+        let last = edges.clone().map(|e| key(e).0).max().unwrap();
+        let run: Vec<u32> = edges.filter(|&e| key(e).0 == last).map(|e| key(e).1).collect();
+        let truly_trivial = run.len() == 1 || (run.len() == 2 && run[0] == run[1]);
+
+        let (mut lo, mut hi) = (vec![0; count], vec![0; count]);
+        let c = case.indices.len();
+        let mut memory = vec![0u8; bytes_of(|a| WeldScratch::take(a, v, c).map(|_| ())).unwrap()];
+        let weld = WeldScratch::take(&mut Arena::Carve(&mut memory), v, c).unwrap();
+        let memory = last_run::Memory {
+            lo: &mut lo,
+            hi: &mut hi,
+            weld,
+        };
+        let said = last_run::is_trivial(&attributes, 1, &welded, &class, &source, &ids, memory);
+        truly += usize::from(truly_trivial);
+        trivial += usize::from(said);
+        assert!(
+            !said || truly_trivial,
+            "round {round}: called trivial, but the last run is {run:?}"
+        );
+    }
+    // Not vacuous: the cells are replayed and the run found whenever it is trivial.
+    assert!(
+        truly > 300 && trivial == truly,
+        "{trivial} called trivial, {truly} truly trivial"
+    );
+}
