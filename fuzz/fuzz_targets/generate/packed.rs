@@ -76,22 +76,35 @@ impl Packed {
     }
 
     /// Meshes made from this one on which what mikktspace.c's welding, edge pairing and grouping
-    /// hinge on is common: every value snapped to one of a few (equal corners, shared edges,
-    /// collapsed triangles, exact mirror seams; NaN stays NaN), and the same corners unindexed
-    /// (welding must find the vertices the index buffer shared).
+    /// hinge on is common, each meeting one condition under which the library's weld by value must
+    /// decline or find the last run of the edge sort (`last_run.rs`):
+    /// - every value snapped to one of a few (equal corners, shared edges, collapsed triangles,
+    ///   exact mirror seams; NaN stays NaN);
+    /// - the same corners unindexed (welding must find the vertices the index buffer shared);
+    /// - every vertex twice, corners alternating between the copies (duplicates mikktspace.c welds
+    ///   back, as exporters write them), and the same with the second copy's zeros negated (equal
+    ///   under `==`, other bits: the representative's bits matter);
+    /// - the snapped mesh with a NaN in its first corner (mikktspace.c's bounding box stays NaN
+    ///   and nothing welds);
+    /// - the snapped mesh with its last triangle's first edge used three more times at the end of
+    ///   the triangle list (non-manifold edges among the largest welded indices, where the edge
+    ///   sort's unsorted last run lies).
     pub fn variants(&self) -> Vec<Packed> {
         let snap = |x: f32| (x / 4.0).round().clamp(-2.0, 2.0);
         let snap_normal = |x: f32| x.round().clamp(-1.0, 1.0);
-        let mut variants = vec![Packed::new(
-            self.positions.iter().map(|p| p.map(snap)).collect(),
-            self.normals.iter().map(|n| n.map(snap_normal)).collect(),
-            self.texcoords
-                .as_ref()
-                .map(|t| t.iter().map(|uv| uv.map(snap)).collect()),
-            self.indices.clone(),
-        )];
+        let snapped = || {
+            Packed::new(
+                self.positions.iter().map(|p| p.map(snap)).collect(),
+                self.normals.iter().map(|n| n.map(snap_normal)).collect(),
+                self.texcoords
+                    .as_ref()
+                    .map(|t| t.iter().map(|uv| uv.map(snap)).collect()),
+                self.indices.clone(),
+            )
+        };
+        let corners = 0..self.corner_count();
+        let mut variants = vec![snapped()];
         if self.indices.is_some() {
-            let corners = 0..self.corner_count();
             let gather = |values: &[[f32; 3]]| corners.clone().map(|c| values[self.corner_vertex(c)]).collect();
             variants.push(Packed::new(
                 gather(&self.positions),
@@ -101,6 +114,39 @@ impl Packed {
                     .map(|t| corners.clone().map(|c| t[self.corner_vertex(c)]).collect()),
                 None,
             ));
+        }
+        let vertex_count = self.vertex_count() as u32;
+        for negate_zeros in [false, true] {
+            let copy = |x: f32| if negate_zeros && x == 0.0 { -x } else { x };
+            let twice = |values: &[[f32; 3]]| values.iter().copied().chain(values.iter().map(|v| v.map(copy))).collect();
+            variants.push(Packed::new(
+                twice(&self.positions),
+                twice(&self.normals),
+                self.texcoords
+                    .as_ref()
+                    .map(|t| t.iter().copied().chain(t.iter().map(|uv| uv.map(copy))).collect()),
+                Some(
+                    corners
+                        .clone()
+                        .map(|c| self.corner_vertex(c) as u32 + (c % 2) as u32 * vertex_count)
+                        .collect(),
+                ),
+            ));
+        }
+        if self.corner_count() >= 3 {
+            let mut first_nan = snapped();
+            let first = self.corner_vertex(0);
+            first_nan.positions[first][0] = f32::NAN;
+            variants.push(first_nan);
+
+            let mut shared_edge = snapped();
+            let last = self.corner_count() - 3;
+            let [a, b] = [last, last + 1].map(|c| self.corner_vertex(c) as u32);
+            let others = [0, self.corner_count() / 2, last + 2].map(|c| self.corner_vertex(c) as u32);
+            let indices: Vec<u32> = corners.clone().map(|c| self.corner_vertex(c) as u32).collect();
+            let appended = [[b, a, others[0]], [a, b, others[1]], [b, a, others[2]]];
+            shared_edge.indices = Some(indices.into_iter().chain(appended.into_iter().flatten()).collect());
+            variants.push(shared_edge);
         }
         variants
     }

@@ -51,8 +51,12 @@ pub(crate) const NONE: u32 = u32::MAX;
 pub(crate) enum WeldPath {
     /// By value in linear time ([`value_weld`], [`last_run`]).
     ByValue,
-    /// By replaying mikktspace.c's splitting ([`weld`]), and its edge sort's last run.
-    Replayed,
+    /// By replaying mikktspace.c's splitting ([`weld`]): an attribute is `NaN` or huge, or a
+    /// welded vertex's attributes differ in bits.
+    ReplayedForAttributes,
+    /// By value, then replayed for every welded vertex's index, and the edge sort's last run with
+    /// it: that run may hold more than one edge.
+    ReplayedForLastRun,
 }
 
 /// The largest corner or vertex count: indices stay clear of the sentinels.
@@ -352,7 +356,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     });
     let path = match by_value {
         Some(_) => settle_last_run(attributes, threads, b, welded_count, good)?,
-        None => WeldPath::Replayed,
+        None => WeldPath::ReplayedForAttributes,
     };
     let packed = &b.attributes[..welded_count];
     let order = &b.order[..good];
@@ -376,7 +380,7 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             faces::derivatives(packed, welded, &order[first..end], s, t, flags)
         });
     };
-    let values = (path == WeldPath::Replayed).then_some(&b.values[..welded_count]);
+    let values = (path != WeldPath::ByValue).then_some(&b.values[..welded_count]);
     let (phase, neighbors) = (&mut *b.phase, &mut b.neighbors[..good]);
     let mut pairing = move || -> Result<(), Error> {
         let mut phase = Arena::Carve(phase);
@@ -559,7 +563,7 @@ fn settle_last_run(
     let mut phase = Arena::Carve(&mut *b.phase);
     let scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
     weld::weld(attributes, threads, b.welded, b.source, b.values, scratch);
-    Ok(WeldPath::Replayed)
+    Ok(WeldPath::ReplayedForLastRun)
 }
 
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
