@@ -2,7 +2,7 @@
 //! read bandwidth, in one run; and of method MIKKTSPACE against mikktspace.c itself.
 //!
 //! ```text
-//! cargo run --release -p tbasis-compare --example bench [FILTER]
+//! cargo run --release -p tbasis-compare --example bench [-- [--quick] [FILTER]]
 //! ```
 //!
 //! Scenes: the irregular torus of `docs/chart.md` at about 1M vertices (`crates/test-support/src/scenes.rs`),
@@ -13,7 +13,9 @@
 //! across the whole mesh (its time against SKIP's).
 //!
 //! `FILTER` runs only the scenes whose name contains it (`torus`, `asset`, `cube`, `grid`) and
-//! rewrites no part of `docs/bench.md` but the collapsed grid's section, when it ran.
+//! rewrites no part of `docs/bench.md` but the collapsed grid's section, when it ran. `--quick`
+//! times [`QUICK_ROUNDS`] rounds per scene (mikktspace.c in one) and writes `target/bench/bench.md`
+//! instead, to check the output in about a minute; its figures are not worth quoting.
 //!
 //! Every configuration runs on the same buffers, interleaved round by round so that a drift in the
 //! machine's speed touches them all alike; each time is the median over the rounds. Besides
@@ -26,14 +28,19 @@
 //! index buffer, V up as the C port gets it). Before any timing, each scene's corners from both,
 //! with one and two threads, must agree bit for bit (a NaN matching any NaN), or the run stops.
 //! mikktspace.c takes seconds per call on the large scenes: it is timed in only
-//! [`SLOW_SAMPLES`] of the rounds.
+//! [`SLOW_SAMPLES`] of the rounds. meshoptimizer's `meshopt_generateTangents` runs per corner too,
+//! in its MikkTSpace-compatible mode and its default one, with the same V-up coordinates, reading
+//! the mesh through its index buffer; its frames are not mikktspace.c's bits and are not checked.
 //!
-//! Prints the tables and writes `docs/bench.md`.
+//! Prints the tables, method MIKKTSPACE's ratios to mikktspace.c and meshoptimizer, the goals
+//! with what this run measured, and writes `docs/bench.md`.
 
 #[path = "../../../c_tests/listing.rs"]
 mod listing;
 #[path = "common/machine.rs"]
 mod machine;
+#[path = "common/meshopt_tangents.rs"]
+mod meshopt_tangents;
 
 use std::fmt::Write as _;
 use std::fs;
@@ -43,6 +50,8 @@ use std::time::{Duration, Instant};
 
 use listing::listing_tangents;
 use machine::{load_average, machine};
+use meshopt::TangentOptions;
+use meshopt_tangents::meshopt_tangents;
 use mikktspace_reference::Geometry;
 use tbasis::{
     generate, generate_corners, generate_corners_with_scratch, generate_with_scratch, scratch_size_for,
@@ -87,6 +96,12 @@ const CUBE_ROUNDS: usize = 15;
 /// Samples of a slow configuration (mikktspace.c: about 3 s per call on the torus), spread over
 /// the rounds; the others run in every round.
 const SLOW_SAMPLES: usize = 3;
+
+/// Rounds of every scene with `--quick` (the slow configurations in the first only).
+const QUICK_ROUNDS: usize = 3;
+
+/// The flag of a quick run.
+const QUICK_FLAG: &str = "--quick";
 
 /// One array the library reads: a primitive of the asset, or the whole of a generated scene.
 struct Part {
@@ -139,7 +154,7 @@ type SceneBuilder = fn() -> Result<Scene, String>;
 /// A scene: one or more parts, each computed by its own call.
 struct Scene {
     name: String,
-    /// For the summary table.
+    /// For the goals and the comparison with mikktspace.c.
     short: String,
     parts: Vec<Part>,
     /// Large scenes are timed one call per sample; small ones in loops of [`CUBE_CALLS`] calls.
@@ -292,6 +307,8 @@ enum Generator {
     /// mikktspace.c, one frame per corner: the wrapper's callbacks read the part through its index
     /// buffer, with the C port's V-up texture coordinates (what `flip_v` computes for glTF).
     MikktspaceC,
+    /// meshoptimizer's `meshopt_generateTangents`, one frame per corner, with those coordinates too.
+    Meshopt(TangentOptions),
 }
 
 impl Generator {
@@ -313,7 +330,7 @@ impl Generator {
     fn per_corner(&self) -> bool {
         match self {
             Generator::Library(call) => call.corners,
-            Generator::MikktspaceC => true,
+            Generator::MikktspaceC | Generator::Meshopt(_) => true,
             Generator::Listing => false,
         }
     }
@@ -321,7 +338,7 @@ impl Generator {
     fn threads(&self) -> usize {
         match self {
             Generator::Library(call) => call.options.threads.max(1) as usize,
-            Generator::Listing | Generator::MikktspaceC => 1,
+            Generator::Listing | Generator::MikktspaceC | Generator::Meshopt(_) => 1,
         }
     }
 }
@@ -369,7 +386,7 @@ fn mikktspace(threads: u32, caller_scratch: bool) -> Generator {
 
 /// The C port first (the reference of every ratio), then every method and policy, the default,
 /// all on the calling thread, then two configurations again with two threads; last method
-/// MIKKTSPACE per corner and mikktspace.c.
+/// MIKKTSPACE per corner, meshoptimizer's two modes and mikktspace.c.
 fn configs() -> Vec<Config> {
     let library = |method, policy, threads| {
         Generator::library(
@@ -444,6 +461,15 @@ fn configs() -> Vec<Config> {
             generator: mikktspace(threads, caller_scratch),
         });
     }
+    for (name, options) in [
+        (MESHOPT_COMPATIBLE, TangentOptions::Compatible),
+        (MESHOPT, TangentOptions::None),
+    ] {
+        configs.push(Config {
+            name: name.to_string(),
+            generator: Generator::Meshopt(options),
+        });
+    }
     configs.push(Config {
         name: MIKKTSPACE_C.to_string(),
         generator: Generator::MikktspaceC,
@@ -454,7 +480,11 @@ fn configs() -> Vec<Config> {
 /// The name of mikktspace.c's configuration.
 const MIKKTSPACE_C: &str = "mikktspace.c per corner";
 
-/// Index of a configuration by name (the ones the summary compares).
+/// The names of meshoptimizer's configurations: MikkTSpace-compatible, and its default.
+const MESHOPT_COMPATIBLE: &str = "meshopt compatible per corner";
+const MESHOPT: &str = "meshopt per corner";
+
+/// Index of a configuration by name (the ones the goals compare).
 fn find(configs: &[Config], name: &str) -> usize {
     configs
         .iter()
@@ -530,6 +560,19 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
                         "mikktspace.c failed"
                     );
                 }
+                Generator::Meshopt(options) => {
+                    // SAFETY: load.rs and scenes.rs keep every index below the vertex count.
+                    unsafe {
+                        meshopt_tangents(
+                            &part.indices,
+                            &part.positions,
+                            &part.normals,
+                            &part.listing_texcoords,
+                            options,
+                            tangents,
+                        )
+                    };
+                }
                 Generator::Library(call) => {
                     let options = call.options.with_flip_v(part.flip_v);
                     let mesh = part.mesh();
@@ -578,8 +621,9 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64)
 }
 
-/// Times every configuration on `scene`, round by round (a slow one in [`SLOW_SAMPLES`] of them).
-fn measure(scene: &Scene, configs: &[Config]) -> Vec<Measured> {
+/// Times every configuration on `scene`, round by round (a slow one in [`SLOW_SAMPLES`] of them;
+/// with `quick`, [`QUICK_ROUNDS`] rounds and a slow one in the first).
+fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
     let mut outputs = Outputs::of(scene);
     let calls = if scene.small { CUBE_CALLS } else { 1 };
     // A first round warms caches, allocator and page tables, and sizes the rounds from the
@@ -589,12 +633,14 @@ fn measure(scene: &Scene, configs: &[Config]) -> Vec<Measured> {
         .filter(|c| !c.generator.slow())
         .map(|c| run(c.generator, scene, &mut outputs, calls).0.as_secs_f64())
         .sum();
-    let rounds = if scene.small {
+    let rounds = if quick {
+        QUICK_ROUNDS
+    } else if scene.small {
         CUBE_ROUNDS
     } else {
         ((LARGE_SCENE_BUDGET.as_secs_f64() / round.max(1e-9)) as usize).clamp(MIN_ROUNDS, MAX_ROUNDS)
     };
-    let slow_every = rounds.div_ceil(SLOW_SAMPLES);
+    let slow_every = rounds.div_ceil(if quick { 1 } else { SLOW_SAMPLES });
     let mut samples = vec![Vec::with_capacity(rounds); configs.len()];
     let mut refused = vec![0; configs.len()];
     for r in 0..rounds {
@@ -775,7 +821,18 @@ impl Bandwidth {
 }
 
 fn main() {
-    let filter = std::env::args().nth(1);
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == QUICK_FLAG);
+    let filter = args.iter().find(|a| *a != QUICK_FLAG).cloned();
+    if args.len() > usize::from(quick) + 1 || filter.as_deref().is_some_and(|f| f.starts_with('-')) {
+        eprintln!("usage: bench [{QUICK_FLAG}] [FILTER]");
+        std::process::exit(2);
+    }
+    // A quick run checks the output: it leaves the record in docs/ alone.
+    let out_dir =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(if quick { "../../target/bench" } else { "../../docs" });
+    fs::create_dir_all(&out_dir).unwrap_or_else(|e| panic!("{}: {e}", out_dir.display()));
+    let out_path = out_dir.join("bench.md");
     let selected = |what: &str| filter.as_deref().is_none_or(|f| what.contains(f));
     let load_before = load_average();
     println!("{}; load average {load_before}", machine());
@@ -815,7 +872,7 @@ fn main() {
         println!("\n{title}");
         let mikktspace_corners = check_mikktspace(&scene);
         println!("MIKKTSPACE (threads 1 and 2) and mikktspace.c agree on all {mikktspace_corners} corners");
-        let measured = measure(&scene, &configs);
+        let measured = measure(&scene, &configs, quick);
         // The asset's LEGACY run reads V down with flip_v, the C port 1 - v: not comparable bits.
         let mismatches = (scene.parts.iter().all(|p| !p.flip_v)).then(|| legacy_mismatches(&scene));
         let result = SceneResult {
@@ -828,6 +885,7 @@ fn main() {
             mikktspace_corners,
         };
         print!("{}", table(&result, &configs, &bandwidth));
+        println!("{}", mikktspace_ratios(&result, &configs));
         match mismatches {
             Some(0) => println!("LENGYEL+LEGACY and the C port agree bit for bit"),
             Some(m) => println!("LENGYEL+LEGACY and the C port differ on {m} vertices"),
@@ -842,22 +900,23 @@ fn main() {
         );
         results.push(result);
     }
-    let grid = selected("grid").then(grid_section);
+    let grid = selected("grid").then(|| grid_section(quick));
     let load_after = load_average();
     let elapsed = started.elapsed();
     if filter.is_some() {
         if let Some(section) = grid {
-            let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/bench.md");
-            let old = fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            fs::write(&path, with_grid_section(&old, &section)).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-            println!("rewrote the collapsed grid's section of {}", path.display());
+            // A first quick run has no file yet: the section alone then.
+            let old = fs::read_to_string(&out_path).unwrap_or_default();
+            fs::write(&out_path, with_grid_section(&old, &section))
+                .unwrap_or_else(|e| panic!("{}: {e}", out_path.display()));
+            println!("rewrote the collapsed grid's section of {}", out_path.display());
         }
         return;
     }
 
-    let summary = summary(&results, &configs);
+    let goals = goals(&results, &configs);
     let against_c = mikktspace_table(&results, &configs);
-    println!("\n{against_c}\n{summary}");
+    println!("\n{against_c}\n{goals}");
     println!(
         "load average: {load_before} at the start, {load_after} at the end; {:.0} s",
         elapsed.as_secs_f64()
@@ -868,6 +927,15 @@ fn main() {
          Reproduce (about 3 to 4 minutes on 2 cores; prints the tables and writes this file):\n\n",
     );
     writeln!(md, "```text\n{COMMAND}\n```\n").unwrap();
+    writeln!(
+        md,
+        "`{COMMAND} -- {QUICK_FLAG}` times {QUICK_ROUNDS} rounds per scene and writes \
+         `target/bench/bench.md` instead: a check of the output, not a measurement.\n"
+    )
+    .unwrap();
+    if quick {
+        writeln!(md, "**This is such a quick run: its figures are not worth quoting.**\n").unwrap();
+    }
     writeln!(
         md,
         "Measured on {}. Load average (1, 5, 15 min): {load_before} at the start, {load_after} at \
@@ -912,9 +980,13 @@ fn main() {
          **mikktspace.c per corner**: mikktspace.c itself (`mikktspace-sys`, built by `cc` at `-O3`) \
          through `crates/test-support/src/mikktspace_reference.rs`, whose callbacks read the mesh through its \
          index buffer with the C port's V-up coordinates; it allocates its own memory on every call. \
-         Both write into one buffer of a frame per corner allocated before the timing; their \
-         ns/vertex are still per vertex. mikktspace.c is timed in a few rounds only, spread over the \
-         run (seconds per call on the large scenes).\n\n",
+         **meshopt compatible per corner** and **meshopt per corner**: meshoptimizer's \
+         `meshopt_generateTangents` (the `meshopt` crate, 0.7.0), in its MikkTSpace-compatible mode \
+         (`TangentOptions::Compatible`, not mikktspace.c's bits) and its default one, called \
+         directly so that it writes into the caller's buffer, reading the mesh through its index \
+         buffer with the same V-up coordinates. All write into one buffer of a frame per corner \
+         allocated before the timing; their ns/vertex are still per vertex. mikktspace.c is timed \
+         in a few rounds only, spread over the run (seconds per call on the large scenes).\n\n",
     );
     for result in &results {
         writeln!(md, "## {}\n", result.title).unwrap();
@@ -947,6 +1019,7 @@ fn main() {
             result.mikktspace_corners
         )
         .unwrap();
+        writeln!(md, "\n{}", mikktspace_ratios(result, &configs)).unwrap();
         md.push('\n');
     }
     if let Some(why) = skipped {
@@ -957,11 +1030,15 @@ fn main() {
     }
     md.push_str("## MIKKTSPACE against mikktspace.c\n\n");
     md.push_str(&against_c);
-    md.push_str("\n## Summary\n\n");
-    md.push_str(&summary);
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/bench.md");
-    fs::write(&path, md).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    println!("wrote {}", path.display());
+    md.push_str(
+        "\n## Goals\n\n\
+         Each cell: the ratio of the two median times the goal compares, measured in this run, and \
+         whether it meets the goal; when it does not, by how much: how many times shorter the time \
+         the goal is about (the faster side, or the one held to a bound) would have to be.\n\n",
+    );
+    md.push_str(&goals);
+    fs::write(&out_path, md).unwrap_or_else(|e| panic!("{}: {e}", out_path.display()));
+    println!("wrote {}", out_path.display());
 }
 
 /// Per scene, mikktspace.c's time and how many times as long it takes as each configuration of
@@ -993,8 +1070,73 @@ fn mikktspace_table(results: &[SceneResult], configs: &[Config]) -> String {
     text
 }
 
-/// The goals, each with what this run measured.
-fn summary(results: &[SceneResult], configs: &[Config]) -> String {
+/// Method MIKKTSPACE per corner on one thread against the other per-corner generators, from the
+/// medians of this run: how many times faster (or slower) than each.
+fn mikktspace_ratios(result: &SceneResult, configs: &[Config]) -> String {
+    let time = |name: &str| result.measured[find(configs, name)].median.as_secs_f64();
+    let ours = time(&mikktspace_name(1, false));
+    let against: Vec<String> = [MIKKTSPACE_C, MESHOPT_COMPATIBLE, MESHOPT]
+        .into_iter()
+        .map(|name| {
+            let ratio = time(name) / ours;
+            if ratio >= 1.0 {
+                format!("{ratio:.2}x faster than {name}")
+            } else {
+                format!("{:.2}x slower than {name}", 1.0 / ratio)
+            }
+        })
+        .collect();
+    format!(
+        "{} (one thread), from the medians of this run: {}.",
+        mikktspace_name(1, false),
+        against.join("; ")
+    )
+}
+
+/// What a goal asks of a ratio of two median times.
+#[derive(Clone, Copy)]
+enum Bound {
+    AtLeast(f64),
+    /// Strictly more: "faster than".
+    Above(f64),
+    AtMost(f64),
+}
+
+impl Bound {
+    /// "met", or "missed by F": F is how many times shorter the time the goal is about would have
+    /// to be (the one in the ratio's denominator for a lower bound, in its numerator for an upper).
+    fn verdict(self, ratio: f64) -> String {
+        let (met, short_by) = match self {
+            Bound::AtLeast(goal) => (ratio >= goal, goal / ratio),
+            Bound::Above(goal) => (ratio > goal, goal / ratio),
+            Bound::AtMost(goal) => (ratio <= goal, ratio / goal),
+        };
+        if met {
+            "met".to_string()
+        } else {
+            format!("missed by {short_by:.2}x")
+        }
+    }
+}
+
+/// A speed goal: the median time of configuration `numerator` over that of `denominator`, within
+/// `bound`.
+struct Goal {
+    text: String,
+    numerator: usize,
+    denominator: usize,
+    bound: Bound,
+}
+
+/// Scenes this small have no goal but the cube's per-call one.
+const GOAL_VERTICES: usize = 100_000;
+
+/// Two threads against one: the speedup every threaded configuration should reach.
+const THREAD_SPEEDUP_GOAL: f64 = 1.8;
+
+/// The goals on the large scenes, one row each with a column per scene; then, on the cube, each
+/// per-vertex configuration's time per call against its goal of 1 µs.
+fn goals(results: &[SceneResult], configs: &[Config]) -> String {
     let defaults = Options::default();
     let default_name = format!(
         "default ({}+{})",
@@ -1004,88 +1146,96 @@ fn summary(results: &[SceneResult], configs: &[Config]) -> String {
     let listing = find(configs, "listing.c (C port)");
     let legacy = find(configs, "LENGYEL+LEGACY");
     let default = find(configs, &default_name);
-    let legacy2 = find(configs, "LENGYEL+LEGACY, threads=2");
-    let default2 = find(configs, &format!("{default_name}, threads=2"));
     let mikktspace = find(configs, &mikktspace_name(1, false));
-    let mikktspace2 = find(configs, &mikktspace_name(2, false));
-    let mikktspace_c = find(configs, MIKKTSPACE_C);
-    let verdict = |ok: bool| if ok { "met" } else { "not met" };
-    let secs = |r: &SceneResult, k: usize| r.measured[k].median.as_secs_f64();
+    let goal = |text: String, numerator: usize, denominator: usize, bound: Bound| Goal {
+        text,
+        numerator,
+        denominator,
+        bound,
+    };
+    let mut list = vec![
+        goal(
+            "LENGYEL+LEGACY at most 1.2x the C port's time, one thread".to_string(),
+            legacy,
+            listing,
+            Bound::AtMost(1.2),
+        ),
+        goal(
+            format!("{default_name} at most 1.5x the C port's time, one thread"),
+            default,
+            listing,
+            Bound::AtMost(1.5),
+        ),
+        goal(
+            "MIKKTSPACE per corner at least 20x faster than mikktspace.c, one thread".to_string(),
+            find(configs, MIKKTSPACE_C),
+            mikktspace,
+            Bound::AtLeast(20.0),
+        ),
+        goal(
+            "MIKKTSPACE per corner faster than meshopt compatible, one thread".to_string(),
+            find(configs, MESHOPT_COMPATIBLE),
+            mikktspace,
+            Bound::Above(1.0),
+        ),
+    ];
+    for (name, one) in [
+        (mikktspace_name(1, false), mikktspace),
+        (default_name.clone(), default),
+        ("LENGYEL+LEGACY".to_string(), legacy),
+    ] {
+        list.push(goal(
+            format!("{name}: threads=2 at least {THREAD_SPEEDUP_GOAL}x faster than threads=1"),
+            one,
+            find(configs, &format!("{name}, threads=2")),
+            Bound::AtLeast(THREAD_SPEEDUP_GOAL),
+        ));
+    }
 
-    let mut text = String::from("| goal | scene | measured | |\n|---|---|---:|---|\n");
-    for r in results.iter().filter(|r| r.vertices >= 100_000) {
-        let ratio = secs(r, legacy) / secs(r, listing);
-        writeln!(
-            text,
-            "| LENGYEL+LEGACY at most 1.2x the C port, one thread | {} | {ratio:.2}x | {} |",
-            r.short,
-            verdict(ratio <= 1.2)
-        )
-        .unwrap();
-        let ratio = secs(r, default) / secs(r, listing);
-        writeln!(
-            text,
-            "| {default_name} at most 1.5x the C port, one thread | {} | {ratio:.2}x | {} |",
-            r.short,
-            verdict(ratio <= 1.5)
-        )
-        .unwrap();
-        let speedup = secs(r, mikktspace_c) / secs(r, mikktspace);
-        writeln!(
-            text,
-            "| MIKKTSPACE per corner at least 20x faster than mikktspace.c, one thread | {} | {speedup:.2}x | {} |",
-            r.short,
-            verdict(speedup >= 20.0)
-        )
-        .unwrap();
+    let large: Vec<&SceneResult> = results.iter().filter(|r| r.vertices >= GOAL_VERTICES).collect();
+    let mut text = String::from("| goal |");
+    for r in &large {
+        write!(text, " {} |", r.short).unwrap();
     }
-    for r in results {
-        // LEGACY keeps the listing's loop: its second thread is measured, with no goal.
-        for (one, two, name, has_goal) in [
-            (legacy, legacy2, "LENGYEL+LEGACY", false),
-            (default, default2, default_name.as_str(), true),
-            (mikktspace, mikktspace2, "MIKKTSPACE per corner", true),
-        ] {
-            let speedup = secs(r, one) / secs(r, two);
-            let (wanted, goal) = if !has_goal {
-                ("against", "(no goal)")
-            } else if r.vertices >= 100_000 {
-                ("at least 1.7x faster than", verdict(speedup >= 1.7))
-            } else {
-                ("at least 1.7x faster than", "(below 100k vertices: no goal)")
-            };
-            writeln!(
-                text,
-                "| {name}: threads=2 {wanted} threads=1 | {} | {speedup:.2}x | {goal} |",
-                r.short
-            )
-            .unwrap();
+    text.push_str("\n|---|");
+    text.push_str(&"---|".repeat(large.len()));
+    text.push('\n');
+    for g in &list {
+        write!(text, "| {} |", g.text).unwrap();
+        for r in &large {
+            let ratio = r.measured[g.numerator].median.as_secs_f64() / r.measured[g.denominator].median.as_secs_f64();
+            write!(text, " {ratio:.2}x: {} |", g.bound.verdict(ratio)).unwrap();
         }
+        text.push('\n');
     }
-    for r in results.iter().filter(|r| r.vertices < 100) {
-        // The goal is the per-vertex call's.
-        for (k, config) in configs
+
+    for r in results.iter().filter(|r| r.vertices < GOAL_VERTICES) {
+        writeln!(
+            text,
+            "\n{}: every per-vertex configuration under 1 µs per call.\n\n\
+             | configuration | per call | |\n|---|---:|---|",
+            r.short
+        )
+        .unwrap();
+        let per_vertex = configs
             .iter()
             .enumerate()
-            .filter(|(_, c)| matches!(c.generator, Generator::Library(call) if !call.corners))
-        {
+            .filter(|(_, c)| matches!(c.generator, Generator::Library(call) if !call.corners));
+        for (k, config) in per_vertex {
             let per_call = r.measured[k].median;
             writeln!(
                 text,
-                "| {}: under 1 µs per call | {} | {} | {} |",
+                "| {} | {} | {} |",
                 config.name,
-                r.short,
                 human(per_call),
-                verdict(per_call < Duration::from_micros(1))
+                Bound::AtMost(1e-6).verdict(per_call.as_secs_f64())
             )
             .unwrap();
         }
-        let c = r.measured[listing].median;
         writeln!(
             text,
-            "| (listing.c (C port), for reference) | {} | {} | |",
-            r.short,
-            human(c)
+            "| (listing.c (C port), for reference) | {} | |",
+            human(r.measured[listing].median)
         )
         .unwrap();
     }
@@ -1170,16 +1320,17 @@ fn report_of(config: &Config, scene: &Scene) -> Report {
     tbasis::generate(&part.mesh(), &call.options, &mut output).expect("the collapsed grid is valid")
 }
 
-/// Times SKIP and INHERIT on the collapsed grid, prints the table and returns the section of
-/// `docs/bench.md` (its own command and load, since a filtered run rewrites it alone).
-fn grid_section() -> String {
+/// Times SKIP and INHERIT on the collapsed grid (`quick`: see [`measure`]), prints the table and
+/// returns the section of `docs/bench.md` (its own command and load, since a filtered run rewrites
+/// it alone).
+fn grid_section(quick: bool) -> String {
     let load_before = load_average();
     let scene = collapsed_grid();
     let title = scene.title();
     println!("\n{title}");
     let configs = grid_configs();
     let reports: Vec<Report> = configs.iter().map(|c| report_of(c, &scene)).collect();
-    let measured = measure(&scene, &configs);
+    let measured = measure(&scene, &configs, quick);
     let load_after = load_average();
     let skip = measured[0].median.as_secs_f64();
     let mut table = String::from(

@@ -7,8 +7,10 @@
 //! ```
 //!
 //! Writes `docs/chart.csv` (every scene, size and method), `docs/chart.svg` (ns per vertex against
-//! mean angular error on the torus) and `docs/chart.md` (tables). `--max-vertices N` runs only the
-//! sizes up to N and writes to `target/chart/` instead, for a quick look.
+//! mean angular error on the torus) and `docs/chart.md` (tables). Both mark each size's Pareto
+//! front of time against mean error (`tbasis_compare::pareto`), and the tables list each peer with
+//! the methods of this library that dominate it. `--max-vertices N` runs only the sizes up to N and
+//! writes to `target/chart/` instead, for a quick look.
 //!
 //! Peers: the original listing (its C port, `c_tests/listing.c`, linked by `build.rs`),
 //! meshoptimizer's `meshopt_generateTangents` (the `meshopt` crate; default and MikkTSpace-compatible
@@ -24,6 +26,8 @@
 mod listing;
 #[path = "common/machine.rs"]
 mod machine;
+#[path = "common/meshopt_tangents.rs"]
+mod meshopt_tangents;
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -35,12 +39,14 @@ use std::time::{Duration, Instant};
 use listing::listing_tangents;
 use machine::{load_average, machine};
 use meshopt::TangentOptions;
+use meshopt_tangents::meshopt_tangents;
 use scenes::{Accuracy, Scene, SceneSpec};
 use tbasis::{generate, DegeneratePolicy, Indices, Mesh, Method, Options, Output, Strided, StridedMut};
+use tbasis_compare::pareto::{self, Point};
 use tbasis_test_support::{load, mikktspace_reference, scenes};
 
 /// Who computes the tangents.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq)]
 enum Generator {
     Library(Options),
     Listing,
@@ -59,11 +65,32 @@ impl Generator {
             Generator::Listing | Generator::Meshopt(_) => false,
         }
     }
+
+    /// This library, rather than a peer.
+    fn library(&self) -> bool {
+        matches!(self, Generator::Library(_))
+    }
 }
 
 struct Entry {
     name: String,
     generator: Generator,
+}
+
+/// The earlier entry that makes the same call as the one named `name` (the default repeats one of
+/// the methods), if any: its time differs from its twin's by noise alone, so the Pareto
+/// comparison leaves it out.
+fn twin_of<'a>(entries: &'a [Entry], name: &str) -> Option<&'a Entry> {
+    let k = entries.iter().position(|e| e.name == name)?;
+    entries[..k].iter().find(|e| e.generator == entries[k].generator)
+}
+
+/// Whether the entry named `name` is a peer (not this library).
+fn is_peer(entries: &[Entry], name: &str) -> bool {
+    entries
+        .iter()
+        .find(|e| e.name == name)
+        .is_some_and(|e| !e.generator.library())
 }
 
 fn entries() -> Vec<Entry> {
@@ -256,14 +283,17 @@ fn run(generator: Generator, input: &Input, corners: &Corners, time: bool) -> (V
             (tangents, time)
         }
         Generator::Meshopt(options) => {
-            let (per_corner, time) = timed(timing, || {
-                meshopt::generate_tangents(
-                    Some(input.indices),
+            let mut per_corner = vec![[0.0f32; 4]; input.indices.len()];
+            // SAFETY: scenes.rs and load.rs keep every index below the vertex count.
+            let (_, time) = timed(timing, || unsafe {
+                meshopt_tangents(
+                    input.indices,
                     input.positions,
                     input.normals,
                     input.texcoords,
                     options,
-                )
+                    &mut per_corner,
+                );
             });
             (first_corner(input.indices, &per_corner, vertex_count), time)
         }
@@ -302,6 +332,69 @@ struct Row {
     method: String,
     ns_per_vertex: f64,
     accuracy: Accuracy,
+}
+
+impl Row {
+    fn point(&self) -> Point {
+        Point {
+            ns_per_vertex: self.ns_per_vertex,
+            mean_error_deg: self.accuracy.mean_deg,
+        }
+    }
+}
+
+/// The rows of one scene and size that the Pareto comparison takes (all but twins), in entry
+/// order, and whether each is on the front.
+struct Compared<'a> {
+    rows: Vec<&'a Row>,
+    points: Vec<Point>,
+    on_front: Vec<bool>,
+}
+
+impl<'a> Compared<'a> {
+    fn of(rows: &'a [Row], entries: &[Entry], scene: &str, vertices: usize) -> Self {
+        let rows: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.scene == scene && r.vertices == vertices && twin_of(entries, &r.method).is_none())
+            .collect();
+        let points: Vec<Point> = rows.iter().map(|r| r.point()).collect();
+        let on_front = pareto::front(&points);
+        Compared { rows, points, on_front }
+    }
+
+    /// Whether the method named `method` is on the front; `None` when it is not compared.
+    fn on_front(&self, method: &str) -> Option<bool> {
+        let k = self.rows.iter().position(|r| r.method == method)?;
+        Some(self.on_front[k])
+    }
+
+    /// The rows on the front, fastest first: the corners of the front's staircase.
+    fn front(&self) -> Vec<&'a Row> {
+        let mut front: Vec<&Row> = self
+            .rows
+            .iter()
+            .zip(&self.on_front)
+            .filter(|(_, &on)| on)
+            .map(|(r, _)| *r)
+            .collect();
+        front.sort_by(|a, b| a.ns_per_vertex.total_cmp(&b.ns_per_vertex));
+        front
+    }
+
+    /// Each peer, with the methods of this library that dominate it.
+    fn dominated_peers(&self, entries: &[Entry]) -> Vec<(&'a str, Vec<&'a str>)> {
+        (0..self.rows.len())
+            .filter(|&k| is_peer(entries, &self.rows[k].method))
+            .map(|k| {
+                let by = pareto::dominators(&self.points, k)
+                    .into_iter()
+                    .map(|d| self.rows[d].method.as_str())
+                    .filter(|&name| !is_peer(entries, name))
+                    .collect();
+                (self.rows[k].method.as_str(), by)
+            })
+            .collect()
+    }
 }
 
 /// Measures every entry on `scene`; returns how many vertices of LENGYEL+LEGACY differ in any bit
@@ -408,7 +501,11 @@ const COLOURS: [&str; 12] = [
     "#8c564b", "#e377c2",
 ];
 
-/// The torus rows as a log-log scatter, one polyline per method through its sizes.
+/// The colour of the Pareto front's staircase and rings.
+const FRONT_COLOUR: &str = "#333333";
+
+/// The torus rows as a log-log scatter, one polyline per method through its sizes, and each size's
+/// Pareto front.
 fn svg(rows: &[Row], entries: &[Entry], scene: &str) -> String {
     let points: Vec<&Row> = rows
         .iter()
@@ -427,7 +524,8 @@ fn svg(rows: &[Row], entries: &[Entry], scene: &str) -> String {
 
     let mut s = String::new();
     let total_width = left + width + 250.0;
-    let total_height = top + height + 70.0;
+    // Tall enough for the legend: a row per entry, the front's, and the notes.
+    let total_height = (top + height + 70.0).max(top + 20.0 * entries.len() as f64 + 200.0);
     writeln!(
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{total_width}" height="{total_height}" font-family="sans-serif" font-size="12">"#
@@ -527,7 +625,7 @@ fn svg(rows: &[Row], entries: &[Entry], scene: &str) -> String {
             path.join(" ")
         )
         .unwrap();
-        let library = matches!(entry.generator, Generator::Library(_));
+        let library = entry.generator.library();
         // The default repeats one of the methods: a ring lets the point beneath it show.
         let paint = if entry.name.starts_with("tbasis default") {
             format!(r#"fill="none" stroke="{colour}" stroke-width="2""#)
@@ -574,7 +672,63 @@ fn svg(rows: &[Row], entries: &[Entry], scene: &str) -> String {
         }
         writeln!(s, r#"<text x="{}" y="{}">{}</text>"#, lx + 16.0, ly + 4.0, entry.name).unwrap();
     }
-    let note_y = top + 20.0 + 20.0 * entries.len() as f64;
+    // The Pareto front of each size, on top: a staircase through its points, fastest first (the
+    // points above and to the right of it are dominated), and a ring around each.
+    let mut sizes: Vec<usize> = points.iter().map(|r| r.vertices).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    for (i, &n) in sizes.iter().enumerate() {
+        let front: Vec<(f64, f64)> = Compared::of(rows, entries, scene, n)
+            .front()
+            .iter()
+            .filter(|r| r.ns_per_vertex > 0.0 && r.accuracy.mean_deg > 0.0)
+            .map(|r| (x_of(r.ns_per_vertex), y_of(r.accuracy.mean_deg)))
+            .collect();
+        let mut staircase = Vec::new();
+        for (k, &(x, y)) in front.iter().enumerate() {
+            if k > 0 {
+                staircase.push(format!("{x:.1},{:.1}", front[k - 1].1));
+            }
+            staircase.push(format!("{x:.1},{y:.1}"));
+        }
+        writeln!(
+            s,
+            r#"<polyline points="{}" fill="none" stroke="{FRONT_COLOUR}" stroke-dasharray="4 3"/>"#,
+            staircase.join(" ")
+        )
+        .unwrap();
+        let ring = 2.5 + 1.2 * i as f64 + 2.5;
+        for (x, y) in front {
+            writeln!(
+                s,
+                r#"<circle cx="{x:.1}" cy="{y:.1}" r="{ring:.1}" fill="none" stroke="{FRONT_COLOUR}" stroke-width="1.5"/>"#
+            )
+            .unwrap();
+        }
+    }
+    let front_y = top + 10.0 + 20.0 * entries.len() as f64;
+    let lx = left + width + 20.0;
+    writeln!(
+        s,
+        r#"<line x1="{lx}" y1="{front_y}" x2="{}" y2="{front_y}" stroke="{FRONT_COLOUR}" stroke-dasharray="4 3"/>"#,
+        lx + 10.0
+    )
+    .unwrap();
+    writeln!(
+        s,
+        r#"<circle cx="{}" cy="{front_y}" r="4" fill="none" stroke="{FRONT_COLOUR}" stroke-width="1.5"/>"#,
+        lx + 5.0
+    )
+    .unwrap();
+    writeln!(
+        s,
+        r#"<text x="{}" y="{}">Pareto front, per size</text>"#,
+        lx + 16.0,
+        front_y + 4.0
+    )
+    .unwrap();
+
+    let note_y = front_y + 30.0;
     let largest = points.iter().map(|r| r.vertices).max().unwrap_or(0);
     for (i, line) in [
         "Circles: this library;".to_string(),
@@ -583,6 +737,9 @@ fn svg(rows: &[Row], entries: &[Entry], scene: &str) -> String {
         "sizes; larger markers are".to_string(),
         "larger meshes (largest:".to_string(),
         format!("{largest} vertices)."),
+        "Ringed: no other method is".to_string(),
+        "faster and at least as".to_string(),
+        "accurate at that size.".to_string(),
     ]
     .iter()
     .enumerate()
@@ -609,15 +766,24 @@ fn label(value: f64) -> String {
     }
 }
 
-fn table(rows: &[Row], scene: &str, vertices: usize) -> String {
+/// One scene and size: every method's row, whether it is on the Pareto front, and then each peer
+/// with the methods of this library that dominate it.
+fn table(rows: &[Row], entries: &[Entry], scene: &str, vertices: usize) -> String {
+    let compared = Compared::of(rows, entries, scene, vertices);
     let mut text = String::from(
-        "| method | ns/vertex | mean (deg) | p99 (deg) | max (deg) | wrong w |\n|---|---:|---:|---:|---:|---:|\n",
+        "| method | ns/vertex | mean (deg) | p99 (deg) | max (deg) | wrong w | front |\n\
+         |---|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows.iter().filter(|r| r.scene == scene && r.vertices == vertices) {
         let a = &r.accuracy;
+        let front = match (compared.on_front(&r.method), twin_of(entries, &r.method)) {
+            (Some(true), _) => "yes".to_string(),
+            (_, Some(twin)) => format!("(same call as {})", twin.name),
+            _ => String::new(),
+        };
         writeln!(
             text,
-            "| {} | {:.1} | {:.4} | {:.4} | {:.3} | {:.2}% |",
+            "| {} | {:.1} | {:.4} | {:.4} | {:.3} | {:.2}% | {front} |",
             r.method,
             r.ns_per_vertex,
             a.mean_deg,
@@ -626,6 +792,21 @@ fn table(rows: &[Row], scene: &str, vertices: usize) -> String {
             100.0 * a.wrong_handedness_share()
         )
         .unwrap();
+    }
+    text.push('\n');
+    text.push_str(&dominated_peers(&compared, entries));
+    text
+}
+
+/// One line per peer: the methods of this library that dominate it, or that none does.
+fn dominated_peers(compared: &Compared, entries: &[Entry]) -> String {
+    let mut text = String::new();
+    for (peer, by) in compared.dominated_peers(entries) {
+        if by.is_empty() {
+            writeln!(text, "- {peer}: no method of this library dominates it.").unwrap();
+        } else {
+            writeln!(text, "- {peer}: dominated by {}.", by.join(", ")).unwrap();
+        }
     }
     text
 }
@@ -920,6 +1101,18 @@ fn main() {
                 torus_sizes.push(scene.vertex_count());
             }
             let differing = measure_scene(&scene, &entries, &mut rows);
+            println!(
+                "Peers against this library (Pareto dominance), {} {}:",
+                scene.name,
+                scene.vertex_count()
+            );
+            print!(
+                "{}",
+                dominated_peers(
+                    &Compared::of(&rows, &entries, &scene.name, scene.vertex_count()),
+                    &entries
+                )
+            );
             if differing > 0 {
                 println!("{} vertices of LENGYEL+LEGACY differ from listing.c", differing);
             }
@@ -944,7 +1137,8 @@ fn main() {
          whose texture is mirrored on one half (seam vertices duplicated). Error of a vertex: the \
          angle between its tangent and the true tangent dP/ds projected onto its tangent plane; \
          wrong w: the share of vertices whose handedness sign differs from the true one. Time: \
-         median of repeated runs of the generating call alone, one thread. MikkTSpace and \
+         median of repeated runs of the generating call alone, one thread, writing into an output \
+         allocated before the timing. MikkTSpace and \
          meshoptimizer write per-corner tangents; each vertex takes its first corner's, as this \
          library's method MIKKTSPACE (`Options::mikktspace()`, mikktspace.c's frames bit for bit) \
          does in the per-vertex call timed here. Peers: \
@@ -975,6 +1169,16 @@ fn main() {
         }
     )
     .unwrap();
+    md.push_str(
+        "Pareto front: on each scene and size, a method **dominates** another when it is faster \
+         (ns/vertex) and at least as accurate (mean error), or exactly as fast and more accurate; \
+         the **front** column says yes for the methods no other method dominates (the chart rings \
+         them and joins each size's with a dashed staircase). The default makes the same call as \
+         one of the methods listed, so only that one is compared (its time differs by noise \
+         alone). Under each table, each peer with the methods of this library that dominate it. \
+         Computed from the times and errors of this run, unrounded: two errors equal in the tables \
+         may still differ.\n\n",
+    );
     md.push_str("![ns per vertex against mean error, torus](chart.svg)\n\n");
     let mut shown: Vec<usize> = Vec::new();
     for index in [torus_sizes.len().wrapping_sub(1), 0, torus_sizes.len() / 2] {
@@ -1002,7 +1206,7 @@ fn main() {
             "## {}, {n} vertices\n\nOther processes kept {:.2} cores busy meanwhile.\n\n{}",
             capitalize(name),
             busy(name, n),
-            table(&rows, name, n)
+            table(&rows, &entries, name, n)
         )
         .unwrap();
     }
