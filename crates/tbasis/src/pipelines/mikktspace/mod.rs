@@ -525,14 +525,14 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 
 /// Step 3 by value ([`value_weld`]): replaces each corner's vertex in `welded` by its welded
 /// vertex, with each vertex's in `slots`, and fills `source`; or leaves `welded` as it was and
-/// returns `None`. Uses `table` as scratch.
+/// returns `None`. Uses `table` and `values` as scratch.
 fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
     let class = &mut b.slots[..attributes.mesh.vertex_count()];
-    let count = value_weld::classes(attributes, b.welded, class, b.source, b.table)?;
-    for v in b.welded.iter_mut() {
-        *v = class[*v as usize];
-    }
-    Some(count)
+    let memory = value_weld::Memory {
+        table: b.table,
+        spare: b.values,
+    };
+    value_weld::weld(attributes, b.welded, class, b.source, memory)
 }
 
 /// After a weld by value: whether the last run of the edge sort can be left out ([`last_run`]);

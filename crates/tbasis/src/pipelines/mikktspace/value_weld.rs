@@ -20,60 +20,76 @@ use crate::kernel::simd;
 /// Coordinates at or beyond this could make mikktspace.c's midpoint `0.5 * (max + min)` infinite.
 const LARGEST_COORDINATE: f32 = 1e38;
 
-/// Corners read ahead: their new vertices' table slots are fetched together.
+/// Vertices read ahead: their table slots are fetched together.
 const BATCH: usize = 16;
 
-/// Numbers each vertex's class of equal attributes in order of first use by `corners` (vertices
-/// already checked), into `class` (per vertex, [`NONE`] for unused ones), and writes one vertex
-/// of each class into `source`; `table` (at least two words per vertex) is the hash table.
-/// Returns the class count, or `None` where mikktspace.c's weld could differ (see the module).
-pub(crate) fn classes(
+/// Marks a used vertex in `class` before it has a class.
+const USED: u32 = NONE - 1;
+
+/// Working arrays of the weld by value.
+pub(crate) struct Memory<'a> {
+    /// The hash table: at least two words per vertex.
+    pub table: &'a mut [u32],
+    /// One word per corner.
+    pub spare: &'a mut [u32],
+}
+
+/// Replaces each corner's vertex in `corners` (indices already checked) by its welded vertex,
+/// numbered in order of first use; writes each vertex's welded vertex to `class` ([`NONE`] for
+/// unused ones) and one vertex of each welded vertex to `source`. Returns the welded vertex count,
+/// or `None`, with `corners` untouched, where mikktspace.c's weld could differ (see the module).
+///
+/// The vertices are hashed in their own order, so that their attributes stream from memory and
+/// the table's probes are fetched a batch at a time; the corners then number the classes.
+pub(crate) fn weld(
     attributes: &Attributes,
-    corners: &[u32],
+    corners: &mut [u32],
     class: &mut [u32],
     source: &mut [u32],
-    table: &mut [u32],
+    memory: Memory,
 ) -> Option<usize> {
+    let Memory { table, spare } = memory;
     class.fill(NONE);
+    for &v in corners.iter() {
+        class[v as usize] = USED;
+    }
+
+    // 1. Each used vertex's class, numbered in vertex order for now; a vertex of each in `spare`.
     table.fill(NONE);
     let capacity = table.len() as u64;
     let mut count = 0u32;
-    // Per batch: each new vertex, its attributes, their bits with -0 as +0, and its first slot.
-    let mut new = [(0u32, [0.0f32; 8], [0u32; 8], 0usize); BATCH];
-    for batch in corners.chunks(BATCH) {
+    let mut batch = [(0u32, [0u32; 8], [0u32; 8], 0usize); BATCH];
+    let mut v = 0;
+    while v < class.len() {
         let mut pending = 0;
-        for &v in batch {
-            if class[v as usize] != NONE {
-                continue;
+        while pending < BATCH && v < class.len() {
+            if class[v] == USED {
+                let key = attributes.key(v as u32);
+                let usable = key.iter().all(|x| !x.is_nan()) && key[..3].iter().all(|x| x.abs() < LARGEST_COORDINATE);
+                if !usable {
+                    return None;
+                }
+                let canonical = key.map(canonical_bits);
+                // Multiply-shift onto the table: any capacity works.
+                let slot = ((u64::from(hash_of(&canonical)) * capacity) >> 32) as usize;
+                simd::prefetch(table, slot);
+                batch[pending] = (v as u32, key.map(f32::to_bits), canonical, slot);
+                pending += 1;
             }
-            let key = attributes.key(v);
-            let usable = key.iter().all(|x| !x.is_nan()) && key[..3].iter().all(|x| x.abs() < LARGEST_COORDINATE);
-            if !usable {
-                return None;
-            }
-            let canonical = key.map(canonical_bits);
-            // Multiply-shift onto the table: any capacity works.
-            let slot = ((u64::from(hash_of(&canonical)) * capacity) >> 32) as usize;
-            simd::prefetch(table, slot);
-            new[pending] = (v, key, canonical, slot);
-            pending += 1;
+            v += 1;
         }
-        for &(v, key, canonical, mut slot) in &new[..pending] {
-            if class[v as usize] != NONE {
-                // Twice in this batch.
-                continue;
-            }
-            let id = loop {
+        for &(vertex, bits, canonical, mut slot) in &batch[..pending] {
+            class[vertex as usize] = loop {
                 let id = table[slot];
                 if id == NONE {
                     table[slot] = count;
-                    source[count as usize] = v;
+                    spare[count as usize] = vertex;
                     count += 1;
                     break count - 1;
                 }
-                let other = attributes.key(source[id as usize]);
+                let other = attributes.key(spare[id as usize]);
                 if other.map(canonical_bits) == canonical {
-                    if other.map(f32::to_bits) != key.map(f32::to_bits) {
+                    if other.map(f32::to_bits) != bits {
                         // Equal under `==`, different bits: the representative's would matter.
                         return None;
                     }
@@ -81,8 +97,24 @@ pub(crate) fn classes(
                 }
                 slot = if slot + 1 == table.len() { 0 } else { slot + 1 };
             };
-            class[v as usize] = id;
         }
+    }
+
+    // 2. Renumber in order of first use by the corners, as the replayed weld numbers them.
+    let number = &mut table[..count as usize];
+    number.fill(NONE);
+    let mut next = 0u32;
+    for corner in corners.iter_mut() {
+        let old = class[*corner as usize] as usize;
+        if number[old] == NONE {
+            number[old] = next;
+            source[next as usize] = spare[old];
+            next += 1;
+        }
+        *corner = number[old];
+    }
+    for id in class.iter_mut().filter(|id| **id != NONE) {
+        *id = number[*id as usize];
     }
     Some(count as usize)
 }

@@ -63,6 +63,24 @@ fn replayed(attributes: &Attributes, indices: &[u32]) -> (Vec<u32>, Vec<u32>, Ve
     (welded, source, values)
 }
 
+/// The weld by value: each corner's welded vertex, each vertex's, and a vertex of each welded
+/// vertex; `None` where it declines, after checking it left the corners as they were.
+fn by_value_weld(attributes: &Attributes, indices: &[u32]) -> Option<(Vec<u32>, Vec<u32>, Vec<u32>)> {
+    let (v, c) = (attributes.mesh.vertex_count(), indices.len());
+    let (mut welded, mut class, mut source) = (indices.to_vec(), vec![0; v], vec![0; v]);
+    let (mut table, mut spare) = (vec![0; 2 * v + 2], vec![0; c]);
+    let memory = value_weld::Memory {
+        table: &mut table,
+        spare: &mut spare,
+    };
+    let Some(count) = value_weld::weld(attributes, &mut welded, &mut class, &mut source, memory) else {
+        assert_eq!(welded, indices, "a declined weld changed the corners");
+        return None;
+    };
+    source.truncate(count);
+    Some((welded, class, source))
+}
+
 #[test]
 fn welding_by_value_finds_the_replayed_weld_or_declines() {
     let mut rng = TestRng(0xC0FFEE);
@@ -77,15 +95,15 @@ fn welding_by_value_finds_the_replayed_weld_or_declines() {
             flip_v: false,
         };
         let (welded, source, _) = replayed(&attributes, &case.indices);
-        let v = case.positions.len();
-        let (mut class, mut ours, mut table) = (vec![0; v], vec![0; v], vec![0; 2 * v + 2]);
-        let Some(count) = value_weld::classes(&attributes, &case.indices, &mut class, &mut ours, &mut table) else {
+        let Some((ours_welded, class, ours)) = by_value_weld(&attributes, &case.indices) else {
             continue;
         };
+        let count = ours.len();
         by_value += 1;
         assert_eq!(count, source.len(), "round {round}: welded vertex count");
-        let ours_welded: Vec<u32> = case.indices.iter().map(|&v| class[v as usize]).collect();
         assert_eq!(ours_welded, welded, "round {round}: numbering");
+        let through_class: Vec<u32> = case.indices.iter().map(|&v| class[v as usize]).collect();
+        assert_eq!(through_class, welded, "round {round}: each vertex's welded vertex");
         for (id, (&a, &b)) in ours.iter().zip(&source).enumerate().take(count) {
             let bits = |v: u32| attributes.key(v).map(f32::to_bits);
             assert_eq!(bits(a), bits(b), "round {round}: welded vertex {id}'s attributes");
@@ -113,11 +131,10 @@ fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
             flip_v: false,
         };
         let v = case.positions.len();
-        let (mut class, mut source, mut table) = (vec![0; v], vec![0; v], vec![0; 2 * v + 2]);
-        let Some(count) = value_weld::classes(&attributes, &case.indices, &mut class, &mut source, &mut table) else {
+        let Some((welded, class, source)) = by_value_weld(&attributes, &case.indices) else {
             continue;
         };
-        let welded: Vec<u32> = case.indices.iter().map(|&v| class[v as usize]).collect();
+        let count = source.len();
         let position = |id: u32| attributes.position(source[id as usize]);
         let ids: Vec<[u32; 3]> = welded
             .chunks(3)
