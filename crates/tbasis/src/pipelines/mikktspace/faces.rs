@@ -2,6 +2,7 @@
 //! (mikktspace.c's degenerate marking, `DegenPrologue` and the first half of `InitTriInfo`).
 #![forbid(unsafe_code)]
 
+use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES};
 use crate::kernel::vector::{add, equal, length, not_zero, position, scale, sub, texcoord, Packed, Vec3};
 
 /// The triangle's texture area is positive (its UVs keep the winding).
@@ -38,7 +39,9 @@ pub(crate) fn good_first(marks: &[u8], order: &mut [u32]) -> usize {
 }
 
 /// Writes, for each good triangle `g` (triangle `order[g]`), its unit dP/ds and dP/dt signed by
-/// the UV orientation (zero where they vanish) and its flags (`InitTriInfo`, eq. 18 and 19).
+/// the UV orientation (zero where they vanish) and its flags (`InitTriInfo`, eq. 18 and 19). A
+/// batch of triangles at a time, one per lane: every lane performs the C's operations in its
+/// order, so the SIMD paths give its bits ([`crate::kernel::simd`]).
 pub(crate) fn derivatives(
     attributes: &[Packed],
     welded: &[u32],
@@ -47,39 +50,73 @@ pub(crate) fn derivatives(
     tangent_t: &mut [Vec3],
     flags: &mut [u8],
 ) {
-    for (g, &t) in order.iter().enumerate() {
-        let vertex = |k: usize| &attributes[welded[3 * t as usize + k] as usize];
-        let [v1, v2, v3] = [0, 1, 2].map(|k| position(vertex(k)));
-        let [t1, t2, t3] = [0, 1, 2].map(|k| texcoord(vertex(k)));
-        let (t21x, t21y) = (t2[0] - t1[0], t2[1] - t1[1]);
-        let (t31x, t31y) = (t3[0] - t1[0], t3[1] - t1[1]);
+    crate::kernel::simd::run(
+        #[inline(always)]
+        || {
+            let outputs = tangent_s
+                .chunks_mut(LANES)
+                .zip(tangent_t.chunks_mut(LANES))
+                .zip(flags.chunks_mut(LANES));
+            for (order, ((s, t), flags)) in order.chunks(LANES).zip(outputs) {
+                derivatives_batch(attributes, welded, order, [s, t], flags);
+            }
+        },
+    );
+}
+
+/// [`derivatives`] for at most [`LANES`] triangles.
+#[inline(always)]
+fn derivatives_batch(attributes: &[Packed], welded: &[u32], order: &[u32], out: [&mut [Vec3]; 2], flags: &mut [u8]) {
+    // `[corner][component][lane]`.
+    let mut positions = [[[0.0; LANES]; 3]; 3];
+    let mut texcoords = [[[0.0; LANES]; 2]; 3];
+    for (i, &t) in order.iter().enumerate() {
+        for k in 0..3 {
+            let vertex = &attributes[welded[3 * t as usize + k] as usize];
+            set_lane3(&mut positions[k], i, position(vertex));
+            let [u, v] = texcoord(vertex);
+            (texcoords[k][0][i], texcoords[k][1][i]) = (u, v);
+        }
+    }
+    let mut lanes_out = [[[0.0; LANES]; 3]; 2];
+    let mut lane_flags = [0u32; LANES];
+    let [t1, t2, t3] = &texcoords;
+    for i in 0..lanes_in_use(order.len()) {
+        let [v1, v2, v3] = [0, 1, 2].map(|k| lane3(&positions[k], i).to_array());
+        let (t21x, t21y) = (t2[0][i] - t1[0][i], t2[1][i] - t1[1][i]);
+        let (t31x, t31y) = (t3[0][i] - t1[0][i], t3[1][i] - t1[1][i]);
         let (d1, d2) = (sub(v2, v1), sub(v3, v1));
         let signed_area = t21x * t31y - t21y * t31x;
         let os = sub(scale(t31y, d1), scale(t21y, d2));
         let ot = add(scale(-t31x, d1), scale(t21x, d2));
 
-        let mut flag = GROUP_WITH_ANY;
-        if signed_area > 0.0 {
-            flag |= ORIENT_PRESERVING;
-        }
-        let (mut s, mut tt) = ([0.0; 3], [0.0; 3]);
-        if not_zero(signed_area) {
-            let abs_area = signed_area.abs();
-            let (length_s, length_t) = (length(os), length(ot));
-            let sign = if flag & ORIENT_PRESERVING == 0 { -1.0 } else { 1.0 };
-            if not_zero(length_s) {
-                s = scale(sign / length_s, os);
-            }
-            if not_zero(length_t) {
-                tt = scale(sign / length_t, ot);
-            }
-            // The magnitudes |dP/ds|, |dP/dt| only decide whether the triangle is usable.
-            if not_zero(length_s / abs_area) && not_zero(length_t / abs_area) {
-                flag &= !GROUP_WITH_ANY;
-            }
-        }
-        tangent_s[g] = s;
-        tangent_t[g] = tt;
-        flags[g] = flag;
+        let preserving = signed_area > 0.0;
+        let has_area = not_zero(signed_area);
+        let abs_area = signed_area.abs();
+        let (length_s, length_t) = (length(os), length(ot));
+        let sign = if preserving { 1.0 } else { -1.0 };
+        let s = if has_area && not_zero(length_s) {
+            scale(sign / length_s, os)
+        } else {
+            [0.0; 3]
+        };
+        let t = if has_area && not_zero(length_t) {
+            scale(sign / length_t, ot)
+        } else {
+            [0.0; 3]
+        };
+        // The magnitudes |dP/ds|, |dP/dt| only decide whether the triangle is usable.
+        let usable = has_area & not_zero(length_s / abs_area) & not_zero(length_t / abs_area);
+        set_lane3(&mut lanes_out[0], i, s);
+        set_lane3(&mut lanes_out[1], i, t);
+        let any = if usable { 0 } else { u32::from(GROUP_WITH_ANY) };
+        let orientation = if preserving { u32::from(ORIENT_PRESERVING) } else { 0 };
+        lane_flags[i] = any | orientation;
+    }
+    let [s, t] = out;
+    for i in 0..order.len() {
+        s[i] = lane3(&lanes_out[0], i).to_array();
+        t[i] = lane3(&lanes_out[1], i).to_array();
+        flags[i] = lane_flags[i] as u8;
     }
 }
