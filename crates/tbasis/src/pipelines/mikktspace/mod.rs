@@ -464,15 +464,19 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let first_groups = core::iter::once(0).chain(group_ends.iter().copied());
     // Empty until a range spills: one range allocates nothing.
     let mut spilled: [Vec<tspace::Spilled>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    let mut outcomes: [Result<(), Error>; parallel::MAX_RANGES] = core::array::from_fn(|_| Ok(()));
     let parts = parallel::split(&mut *b.tangents, triangle_ends, 3)
         .zip(parallel::split(&mut *b.orientation, triangle_ends, 3))
         .zip(parallel::split(&mut *groups.faces, member_ends.ends(), 1))
         .zip(first_triangles.zip(ends.iter()))
         .zip(first_groups.zip(group_ends.iter()))
-        .zip(spilled.iter_mut());
+        .zip(spilled.iter_mut().zip(outcomes.iter_mut()));
     let (vertices, orientations) = (&*groups.vertex, &*groups.orientation);
     parallel::run_ranges(ends, parts, |first, parts| {
-        let (((((tangents, orientation), faces), (first_triangle, &end)), (first_group, &end_group)), spilled) = parts;
+        let (
+            ((((tangents, orientation), faces), (first_triangle, &end)), (first_group, &end_group)),
+            (spilled, outcome),
+        ) = parts;
         let mut out = tspace::Written {
             tangents,
             orientation,
@@ -485,9 +489,13 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
             let members = &mut faces[starts[group] as usize - base..starts[group + 1] as usize - base];
             members.sort_unstable();
             let preserving = orientations[group] != 0;
-            tspace::evaluate_group(&inputs, members, vertices[group], preserving, &mut out);
+            *outcome = tspace::evaluate_group(&inputs, members, vertices[group], preserving, &mut out);
+            if outcome.is_err() {
+                return;
+            }
         }
     });
+    outcomes.into_iter().collect::<Result<(), Error>>()?;
 
     for &(corner, tangent, preserving) in spilled.iter().flatten() {
         b.tangents[corner as usize] = tangent;

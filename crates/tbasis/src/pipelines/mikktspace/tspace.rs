@@ -10,6 +10,7 @@
 #![forbid(unsafe_code)]
 
 use super::faces::GROUP_WITH_ANY;
+use crate::kernel::error::Error;
 use crate::kernel::vector::{add, dot, normalize_if_not_zero, scale, Vec3};
 
 /// Cosine of the default 180-degree angular threshold, as mikktspace.c computes it in float.
@@ -49,23 +50,32 @@ pub(crate) struct Written<'a> {
 
 /// Writes the tangent and orientation of the corners of the group's triangles `faces` (in
 /// ascending order) around welded vertex `vertex`: those outside `out`'s range are spilled.
-pub(crate) fn evaluate_group(inputs: &Inputs, faces: &[u32], vertex: u32, preserving: bool, out: &mut Written) {
+/// Fails when memory for a spill or for the pairwise comparison cannot be had.
+pub(crate) fn evaluate_group(
+    inputs: &Inputs,
+    faces: &[u32],
+    vertex: u32,
+    preserving: bool,
+    out: &mut Written,
+) -> Result<(), Error> {
     let corner = |j: usize| {
         let f = faces[j] as usize;
         3 * f + inputs.ids[f].iter().position(|&id| id == vertex).unwrap_or(0)
     };
     let (s, t, angle) = (inputs.s, inputs.t, inputs.angle);
     let usable = |j: usize| inputs.flags[faces[j] as usize] & GROUP_WITH_ANY == 0;
-    let write = |j: usize, tangent: Vec3, out: &mut Written| {
+    let write = |j: usize, tangent: Vec3, out: &mut Written| -> Result<(), Error> {
         let (triangle, k) = (inputs.order[faces[j] as usize] as usize, corner(j) % 3);
         if out.goods.contains(&faces[j]) {
             let corner = 3 * (triangle - out.first_triangle) + k;
             out.tangents[corner] = tangent;
             out.orientation[corner] = u8::from(preserving);
         } else {
+            out.spilled.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
             out.spilled
                 .push(((3 * triangle + k) as u32, tangent, u8::from(preserving)));
         }
+        Ok(())
     };
     let count = faces.len();
 
@@ -81,9 +91,9 @@ pub(crate) fn evaluate_group(inputs: &Inputs, faces: &[u32], vertex: u32, preser
     if half_s.holds && half_t.holds {
         let tangent = normalize_if_not_zero(sum);
         for j in 0..count {
-            write(j, tangent, out);
+            write(j, tangent, out)?;
         }
-        return;
+        return Ok(());
     }
 
     // Some directions may be exactly opposite: compare every pair, as mikktspace.c does.
@@ -91,8 +101,11 @@ pub(crate) fn evaluate_group(inputs: &Inputs, faces: &[u32], vertex: u32, preser
     let within = |terms: &[Vec3], j: usize, k: usize| dot(terms[corner(j)], terms[corner(k)]) > threshold;
     let member = |j: usize, k: usize| !usable(j) || !usable(k) || j == k || (within(s, j, k) && within(t, j, k));
     let mut subgroups: Vec<(Vec<usize>, Vec3)> = Vec::new();
+    subgroups.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
     for j in 0..count {
-        let own: Vec<usize> = (0..count).filter(|&k| member(j, k)).collect();
+        let mut own = Vec::new();
+        own.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
+        own.extend((0..count).filter(|&k| member(j, k)));
         let tangent = match subgroups.iter().find(|(m, _)| *m == own) {
             Some((_, tangent)) => *tangent,
             None => {
@@ -105,8 +118,9 @@ pub(crate) fn evaluate_group(inputs: &Inputs, faces: &[u32], vertex: u32, preser
                 tangent
             }
         };
-        write(j, tangent, out);
+        write(j, tangent, out)?;
     }
+    Ok(())
 }
 
 /// Whether no two of the directions admitted so far can have a cosine of -1 or less, nor a `NaN`
