@@ -535,9 +535,11 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
 /// vertex, with each vertex's in `slots`, and fills `source`; or leaves `welded` as it was and
 /// returns `None`. Uses `table` and `values` as scratch.
 fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
-    let class = &mut b.slots[..attributes.mesh.vertex_count()];
+    let vertex_count = attributes.mesh.vertex_count();
+    let class = &mut b.slots[..vertex_count];
+    // Two slots per vertex keep the table at most half full; the rest stays untouched.
     let memory = value_weld::Memory {
-        table: b.table,
+        table: &mut b.table[..2 * vertex_count + 2],
         spare: b.values,
     };
     value_weld::weld(attributes, b.welded, class, b.source, memory)
