@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 import gltf
 import tbasis
 from meshes import torus
-from support import CORPUS, EXAMPLES, require, same_bits
+from support import CORPUS, EXAMPLES, require_corpus_file, same_bits
 
 MIRROR_TEST = CORPUS / "khronos" / "NormalTangentMirrorTest.glb"  # stored tangents: mikktspace-exact
 
@@ -107,7 +107,7 @@ def test_gltf_example_splits_seams_and_writes_mikktspace_tangents(tmp_path: Path
 
 
 def test_gltf_example_matches_the_tangents_blender_stored(tmp_path: Path) -> None:
-    require(MIRROR_TEST.is_file(), f"the mesh corpus ({MIRROR_TEST})")
+    require_corpus_file(MIRROR_TEST)
     target = tmp_path / "out.glb"
     run_example(MIRROR_TEST, target)
     (stored,) = gltf.primitives(MIRROR_TEST)
