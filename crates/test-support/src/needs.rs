@@ -57,6 +57,9 @@ pub const SANITIZERS: Need = Need {
 pub const CMAKE: Need = Need {
     probe: Probe::Programs(&[("cmake", "cmake"), ("make", "make")]),
 };
+pub const GIT: Need = Need {
+    probe: Probe::Programs(&[("git", "git")]),
+};
 pub const PKG_CONFIG: Need = Need {
     probe: Probe::Programs(&[("pkg-config", "pkg-config")]),
 };
