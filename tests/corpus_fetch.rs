@@ -121,7 +121,10 @@ fn the_repository_manifests_describe_the_corpus_beside_the_clone() {
     let mut listed: BTreeSet<String> = listed_files().into_iter().map(|(path, _)| path).collect();
     listed.extend(["MANIFEST.tsv".to_string(), "README.md".to_string()]);
     let unlisted: Vec<String> = files_below(&corpus).difference(&listed).cloned().collect();
-    assert!(unlisted.is_empty(), "corpus files the manifests do not list: {unlisted:?}");
+    assert!(
+        unlisted.is_empty(),
+        "corpus files the manifests do not list: {unlisted:?}"
+    );
 }
 
 #[test]
@@ -147,7 +150,10 @@ fn fetch_corpus_fetches_every_file_from_a_mirror_and_refuses_a_corrupted_one() {
     check.arg("--check").arg("--dest").arg(&dest);
     run_ok(check, "scripts/fetch-corpus --check on what it fetched");
     for (path, _) in &files {
-        let (fetched, original) = (std::fs::read(dest.join(path)).unwrap(), std::fs::read(corpus.join(path)).unwrap());
+        let (fetched, original) = (
+            std::fs::read(dest.join(path)).unwrap(),
+            std::fs::read(corpus.join(path)).unwrap(),
+        );
         assert!(fetched == original, "{path}: other bytes than the corpus's");
     }
 
@@ -172,9 +178,13 @@ fn fetch_corpus_fetches_every_file_from_a_mirror_and_refuses_a_corrupted_one() {
         stderr.contains(&format!("{victim}: refused")),
         "the refusal must name {victim}: {stderr}"
     );
-    assert!(!dest.join(victim).exists(), "{victim} was put in place although corrupted");
     assert!(
-        String::from_utf8_lossy(&output.stdout).contains(&format!("0 files fetched, {} already there", files.len() - 1)),
+        !dest.join(victim).exists(),
+        "{victim} was put in place although corrupted"
+    );
+    assert!(
+        String::from_utf8_lossy(&output.stdout)
+            .contains(&format!("0 files fetched, {} already there", files.len() - 1)),
         "the files already fetched must be kept"
     );
 

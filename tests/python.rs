@@ -139,7 +139,8 @@ fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, o
         .current_dir(outside);
     let output = run_ok(clean(example), "the example, with the package built from its sdist");
     assert!(
-        String::from_utf8_lossy(&output.stdout).contains("index 5 (triangle 1, corner 2) is 4, not in range for 4 vertices"),
+        String::from_utf8_lossy(&output.stdout)
+            .contains("index 5 (triangle 1, corner 2) is 4, not in range for 4 vertices"),
         "the example printed something else"
     );
 }

@@ -287,10 +287,17 @@ fn a_quick_start_for_each_audience_then_contents_within_80_lines() {
     let readme = std::fs::read_to_string(Path::new(CRATE_DIR).join("README.md")).expect("README.md");
     let sections = sections(&readme);
     let names: Vec<&str> = sections.iter().map(|(name, _)| name.as_str()).collect();
-    assert_eq!(names[..2], ["Quick start", "Contents"], "the README opens with these sections");
+    assert_eq!(
+        names[..2],
+        ["Quick start", "Contents"],
+        "the README opens with these sections"
+    );
     let quick_start = &sections[0].1;
     for audience in ["**C**", "**C++**", "**Rust**", "**Python**", "**glTF files**"] {
-        assert!(quick_start.contains(audience), "the quick start has no part for {audience}");
+        assert!(
+            quick_start.contains(audience),
+            "the quick start has no part for {audience}"
+        );
     }
     let contents_line = readme.lines().position(|line| line == "## Contents").unwrap() + 1;
     assert!(contents_line <= 80, "the contents list starts on line {contents_line}");
@@ -302,7 +309,10 @@ fn a_quick_start_for_each_audience_then_contents_within_80_lines() {
         .collect();
     for link in sections[1].1.split("](#").skip(1) {
         let target = link.split(')').next().unwrap();
-        assert!(headings.iter().any(|h| h == target), "the contents link #{target} leads nowhere");
+        assert!(
+            headings.iter().any(|h| h == target),
+            "the contents link #{target} leads nowhere"
+        );
     }
 }
 

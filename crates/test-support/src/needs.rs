@@ -121,9 +121,8 @@ impl Need {
         match self.probe {
             Probe::Corpus => missing_corpus(),
             Probe::Programs(programs) => missing_programs(programs),
-            Probe::Sanitizers => (!sanitizers_run()).then(|| {
-                "the AddressSanitizer and UBSan runtimes of cc (Debian: libasan8, libubsan1)".to_string()
-            }),
+            Probe::Sanitizers => (!sanitizers_run())
+                .then(|| "the AddressSanitizer and UBSan runtimes of cc (Debian: libasan8, libubsan1)".to_string()),
             Probe::PythonVenv => missing_python_venv(),
             Probe::GltfValidator => missing_gltf_validator(),
         }
@@ -181,7 +180,9 @@ fn missing_programs(programs: &[(&str, &str)]) -> Option<String> {
 
 fn missing_python_venv() -> Option<String> {
     if !on_path("python3") {
-        return Some("python3, 3.9 or later, with its venv and pip modules (Debian: python3, python3-venv, python3-pip)".into());
+        return Some(
+            "python3, 3.9 or later, with its venv and pip modules (Debian: python3, python3-venv, python3-pip)".into(),
+        );
     }
     if !succeeds(Command::new("python3").args(["-c", "import sys; assert sys.version_info >= (3, 9)"])) {
         return Some("python3 3.9 or later (an older one is on PATH)".into());
@@ -218,7 +219,9 @@ fn missing_gltf_validator() -> Option<String> {
             "the Khronos glTF Validator {GLTF_VALIDATOR_VERSION}, not the version in {} ({install})",
             package.display()
         )),
-        Err(_) => Some(format!("the Khronos glTF Validator {GLTF_VALIDATOR_VERSION} ({install})")),
+        Err(_) => Some(format!(
+            "the Khronos glTF Validator {GLTF_VALIDATOR_VERSION} ({install})"
+        )),
     }
 }
 

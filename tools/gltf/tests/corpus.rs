@@ -307,7 +307,11 @@ fn a_second_run_without_overwrite_writes_the_same_bytes() {
     // `--check` on every output at once: nothing would change.
     let outputs = converted().files.iter().map(|(_, output)| output.as_os_str());
     let check = tool::run(std::iter::once("--check".as_ref()).chain(outputs));
-    assert_eq!(check.status.code(), Some(0), "--check finds something to change in the outputs");
+    assert_eq!(
+        check.status.code(),
+        Some(0),
+        "--check finds something to change in the outputs"
+    );
     for (_, output) in &converted().files {
         let name = output.file_name().unwrap().to_string_lossy();
         // The same folder, so that relative URIs stay as they are.
