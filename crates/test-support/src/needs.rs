@@ -150,15 +150,18 @@ impl Need {
 
 /// The corpus files absent from its folder, named, with the command that fetches them.
 fn missing_corpus() -> Option<String> {
-    let dir = corpus_dir();
-    let absent: Vec<String> = corpus_files()
-        .into_iter()
-        .filter(|file| !dir.join(file).is_file())
-        .collect();
+    missing_corpus_files(&corpus_dir(), &corpus_files())
+}
+
+/// Which of `files` are absent from `dir`, named (the first two), with the command that fetches
+/// them; `None` when none is.
+pub(crate) fn missing_corpus_files(dir: &Path, files: &[String]) -> Option<String> {
+    let absent: Vec<&String> = files.iter().filter(|file| !dir.join(file).is_file()).collect();
     let shown = match absent.as_slice() {
         [] => return None,
-        [one] => one.clone(),
-        [first, second, ..] => format!("{first}, {second} and {} more", absent.len() - 2),
+        [one] => one.to_string(),
+        [first, second] => format!("{first} and {second}"),
+        [first, second, rest @ ..] => format!("{first}, {second} and {} more", rest.len()),
     };
     Some(format!(
         "the mesh corpus in {} ({shown} absent; scripts/fetch-corpus fetches it: README, \"Test corpus\")",
@@ -167,7 +170,7 @@ fn missing_corpus() -> Option<String> {
 }
 
 /// The programs absent from `PATH` and their Debian packages.
-fn missing_programs(programs: &[(&str, &str)]) -> Option<String> {
+pub(crate) fn missing_programs(programs: &[(&str, &str)]) -> Option<String> {
     let absent: Vec<&(&str, &str)> = programs.iter().filter(|(program, _)| !on_path(program)).collect();
     if absent.is_empty() {
         return None;
