@@ -21,7 +21,9 @@ fn main() {
     config.after_includes = Some(format!(
         "\n#define TBASIS_VERSION_MAJOR {major}\n#define TBASIS_VERSION_MINOR {minor}\n#define TBASIS_VERSION_PATCH {patch}\n\
          /* TBASIS_VERSION_MAJOR * 1000000 + TBASIS_VERSION_MINOR * 1000 + TBASIS_VERSION_PATCH; compare with tbasis_version(). */\n\
-         #define TBASIS_VERSION ({major} * 1000000 + {minor} * 1000 + {patch})\n"
+         #define TBASIS_VERSION ({major} * 1000000 + {minor} * 1000 + {patch})\n\n\
+         // A report's `first_degenerate_triangle` or `failed_triangle` when there is no such triangle.\n\
+         #define TBASIS_NO_TRIANGLE SIZE_MAX\n"
     ));
     cbindgen::Builder::new()
         .with_crate(&crate_dir)

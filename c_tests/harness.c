@@ -518,7 +518,7 @@ static void test_degenerate_triangles(const test_mesh *grid)
     if (expect_status("SKIP on two collapsed UV triangles", tbasis_generate(&desc, &options, &output, &report),
                       TBASIS_OK)) {
         check(report.degenerate_triangles == 2 && report.first_degenerate_triangle == (size_t)first &&
-                  report.failed_triangle == SIZE_MAX,
+                  report.failed_triangle == TBASIS_NO_TRIANGLE,
               "SKIP report: %zu degenerate, first %zu, failed %zu; expected 2, first %ld, none failed",
               report.degenerate_triangles, report.first_degenerate_triangle, report.failed_triangle, first);
         check_frames("SKIP on two collapsed UV triangles: frames", n, m.normals, tangents.inner, bitangents.inner, 0);
@@ -768,7 +768,7 @@ static void test_statuses(fixture *f)
         memset(&report, 0x5A, sizeof report);
         tbasis_generate(f->mesh_arg, &f->options, f->output_arg, &report);
         check(report.failed_triangle == (size_t)(t - 1) && report.degenerate_triangles == 0 &&
-                  report.first_degenerate_triangle == SIZE_MAX,
+                  report.first_degenerate_triangle == TBASIS_NO_TRIANGLE,
               "index out of range: report names triangle %zu, expected %ld", report.failed_triangle, t - 1);
     }
     fixture_reset(f);

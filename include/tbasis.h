@@ -21,6 +21,9 @@
 /* TBASIS_VERSION_MAJOR * 1000000 + TBASIS_VERSION_MINOR * 1000 + TBASIS_VERSION_PATCH; compare with tbasis_version(). */
 #define TBASIS_VERSION (0 * 1000000 + 4 * 1000 + 0)
 
+// A report's `first_degenerate_triangle` or `failed_triangle` when there is no such triangle.
+#define TBASIS_NO_TRIANGLE SIZE_MAX
+
 
 // `index_type`: 16-bit indices.
 #define TBASIS_INDEX_U16 1
@@ -138,12 +141,13 @@ typedef struct tbasis_output {
 } tbasis_output;
 
 // What the call found; filled on `TBASIS_OK`, `TBASIS_ERROR_DEGENERATE_UV` and
-// `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (then only `failed_triangle` is set, the counts are 0).
+// `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (then only `failed_triangle` is set, the counts are 0), left
+// as it was on every other status.
 typedef struct tbasis_report {
   // Triangles whose UV determinant is zero (LEGACY) or whose UV or position quality is below the
   // threshold (other policies), or that read a non-finite input.
   size_t degenerate_triangles;
-  // Index of the first such triangle; `SIZE_MAX` when none.
+  // Index of the first such triangle; `TBASIS_NO_TRIANGLE` when there is none.
   size_t first_degenerate_triangle;
   // Vertices given the fallback frame built from their normal alone (never with LEGACY).
   size_t fallback_vertices;
@@ -165,7 +169,7 @@ typedef struct tbasis_report {
   // The triangle a refusal names: with `TBASIS_ERROR_INDEX_OUT_OF_RANGE` the first triangle
   // with an index `>= vertex_count` (its indices are `3 * failed_triangle` to
   // `3 * failed_triangle + 2`), with `TBASIS_ERROR_DEGENERATE_UV` the first degenerate triangle;
-  // `SIZE_MAX` on `TBASIS_OK`.
+  // `TBASIS_NO_TRIANGLE` on `TBASIS_OK`.
   size_t failed_triangle;
 } tbasis_report;
 

@@ -89,15 +89,21 @@ pub struct tbasis_output {
     pub bitangents_stride: usize,
 }
 
+/// The value of a report's triangle index (`first_degenerate_triangle`, `failed_triangle`) when
+/// there is no such triangle: `SIZE_MAX`, which no triangle index can be. The header's
+/// `#define` of it is written by `build.rs`.
+pub const TBASIS_NO_TRIANGLE: usize = usize::MAX;
+
 /// What the call found; filled on `TBASIS_OK`, `TBASIS_ERROR_DEGENERATE_UV` and
-/// `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (then only `failed_triangle` is set, the counts are 0).
+/// `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (then only `failed_triangle` is set, the counts are 0), left
+/// as it was on every other status.
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct tbasis_report {
     /// Triangles whose UV determinant is zero (LEGACY) or whose UV or position quality is below the
     /// threshold (other policies), or that read a non-finite input.
     pub degenerate_triangles: usize,
-    /// Index of the first such triangle; `SIZE_MAX` when none.
+    /// Index of the first such triangle; `TBASIS_NO_TRIANGLE` when there is none.
     pub first_degenerate_triangle: usize,
     /// Vertices given the fallback frame built from their normal alone (never with LEGACY).
     pub fallback_vertices: usize,
@@ -119,7 +125,7 @@ pub struct tbasis_report {
     /// The triangle a refusal names: with `TBASIS_ERROR_INDEX_OUT_OF_RANGE` the first triangle
     /// with an index `>= vertex_count` (its indices are `3 * failed_triangle` to
     /// `3 * failed_triangle + 2`), with `TBASIS_ERROR_DEGENERATE_UV` the first degenerate triangle;
-    /// `SIZE_MAX` on `TBASIS_OK`.
+    /// `TBASIS_NO_TRIANGLE` on `TBASIS_OK`.
     pub failed_triangle: usize,
 }
 
@@ -127,7 +133,7 @@ impl From<Report> for tbasis_report {
     fn from(r: Report) -> Self {
         tbasis_report {
             degenerate_triangles: r.degenerate_triangles,
-            first_degenerate_triangle: r.first_degenerate_triangle,
+            first_degenerate_triangle: r.first_degenerate_triangle.unwrap_or(TBASIS_NO_TRIANGLE),
             fallback_vertices: r.fallback_vertices,
             mirrored_vertices: r.mirrored_vertices,
             unreferenced_vertices: r.unreferenced_vertices,
@@ -135,7 +141,7 @@ impl From<Report> for tbasis_report {
             abnormal_normals: r.abnormal_normals,
             repaired_corners: r.repaired_corners,
             split_vertices: r.split_vertices,
-            failed_triangle: usize::MAX,
+            failed_triangle: TBASIS_NO_TRIANGLE,
         }
     }
 }

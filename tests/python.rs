@@ -1,8 +1,10 @@
 //! The Python package (`bindings/python`, maturin + PyO3) as a user gets it: pip builds its wheel
-//! from the source tree, the wheel goes into a fresh virtual environment with the test tools, and
-//! its tests run there from a directory outside the repository, so that they import the installed
-//! package, never the source tree: pytest (`bindings/python/tests/`), then `mypy --strict` on the
-//! tests, the examples and the package's own sources.
+//! from the source tree, the wheel goes into a fresh virtual environment with its `gltf` extra and
+//! the test tools, and its tests run there from a directory outside the repository, so that they
+//! import the installed package, never the source tree: pytest (`bindings/python/tests/`), then
+//! `mypy --strict` on the tests, the examples and the package's own sources. maturin also builds
+//! the source distribution, which pip installs into another fresh virtual environment, where the
+//! package's example runs.
 //!
 //! The tests compare the package with this crate's C library (a release build), whose path they
 //! get in `TBASIS_REFERENCE_LIBRARY`. Everything the virtual environment holds comes from the
@@ -20,8 +22,9 @@ use tbasis_test_support::needs;
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 
-/// The tools the tests and the example need besides the package, which brings numpy.
-const TEST_TOOLS: [&str; 3] = ["pytest", "mypy", "trimesh"];
+/// The tools the tests need besides the package, which brings numpy, and its `gltf` extra, which
+/// brings what the glTF example needs (trimesh and Pillow).
+const TEST_TOOLS: [&str; 2] = ["pytest", "mypy"];
 
 #[test]
 fn python_package_builds_installs_and_passes_its_tests() {
@@ -56,14 +59,14 @@ fn python_package_builds_installs_and_passes_its_tests() {
         .arg(&package)
         .env("CARGO_TARGET_DIR", work.join("target"));
     run_ok(clean(build), "pip wheel bindings/python");
-    let wheel = only_wheel(&wheels);
+    let wheel = only_file(&wheels, ".whl");
     let name = wheel.file_name().unwrap().to_string_lossy().into_owned();
     assert!(
         name.starts_with("tbasis-") && name.contains("-cp39-abi3-"),
         "{name}: not one abi3 wheel for CPython 3.9 and later"
     );
-    pip(&python, &["install", &wheel.to_string_lossy()]);
-    let mut tools = vec!["install"];
+    pip(&python, &["install", &format!("{}[gltf]", wheel.display())]);
+    let mut tools = vec!["install", "maturin"];
     tools.extend(TEST_TOOLS);
     pip(&python, &tools);
 
@@ -97,7 +100,63 @@ fn python_package_builds_installs_and_passes_its_tests() {
         .arg(package.join("python/tbasis"))
         .current_dir(&outside);
     run_ok(clean(sources), "mypy --strict on the package's sources");
+
+    install_the_source_distribution(&python, &package, &work, &outside);
 }
+
+/// Builds the source distribution with maturin (from `python`'s virtual environment), checks that
+/// it holds regular files only, the licences among them, installs it with pip into a fresh virtual
+/// environment, and runs the package's example there. Its build shares the wheel's target dir, so
+/// that only the package's own crates are compiled again.
+fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, outside: &Path) {
+    let sdists = fresh_dir(&work.join("sdists"));
+    let mut sdist = Command::new(python);
+    sdist
+        .args(["-m", "maturin", "sdist", "--out"])
+        .arg(&sdists)
+        .current_dir(package);
+    run_ok(clean(sdist), "maturin sdist");
+    let archive = only_file(&sdists, ".tar.gz");
+    let mut contents = Command::new(python);
+    contents.args(["-c", SDIST_CONTENTS]).arg(&archive);
+    run_ok(clean(contents), "the source distribution's contents");
+
+    let venv = fresh_dir(&work.join("sdist-venv"));
+    let mut create = Command::new("python3");
+    create.args(["-m", "venv"]).arg(&venv);
+    run_ok(clean(create), "python3 -m venv");
+    let sdist_python = venv_python(&venv);
+    pip(&sdist_python, &["install", "--upgrade", "pip"]);
+    let mut install = Command::new(&sdist_python);
+    install
+        .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
+        .arg(&archive)
+        .env("CARGO_TARGET_DIR", work.join("target"));
+    run_ok(clean(install), "pip install of the source distribution");
+    let mut example = Command::new(&sdist_python);
+    example
+        .arg(package.join("examples/interleaved.py"))
+        .current_dir(outside);
+    let output = run_ok(clean(example), "the example, with the package built from its sdist");
+    assert!(
+        String::from_utf8_lossy(&output.stdout)
+            .contains("index 5 (triangle 1, corner 2) is 4, not in range for 4 vertices"),
+        "the example printed something else"
+    );
+}
+
+/// Python, given the path of a source distribution: fails unless every member is a directory or
+/// a regular file (no link that would dangle once unpacked) and the licences are there.
+const SDIST_CONTENTS: &str = "
+import sys, tarfile
+with tarfile.open(sys.argv[1]) as archive:
+    members = archive.getmembers()
+links = [m.name for m in members if not (m.isfile() or m.isdir())]
+assert not links, f'links in the sdist: {links}'
+names = {m.name.split('/', 1)[-1] for m in members}
+for required in ('LICENSE-MIT', 'LICENSE-APACHE', 'bindings/python/src/c_abi/codes.rs'):
+    assert required in names, f'{required} is not in the sdist'
+";
 
 /// `command` without what cargo's test environment would add to Python's search paths.
 fn clean(mut command: Command) -> Command {
@@ -135,13 +194,13 @@ fn fresh_dir(dir: &Path) -> PathBuf {
     dir.to_path_buf()
 }
 
-/// The one wheel in `dir`.
-fn only_wheel(dir: &Path) -> PathBuf {
-    let wheels: Vec<PathBuf> = std::fs::read_dir(dir)
-        .expect("the wheel directory")
+/// The one file in `dir` whose name ends with `suffix`.
+fn only_file(dir: &Path, suffix: &str) -> PathBuf {
+    let files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("the output directory")
         .map(|entry| entry.expect("a directory entry").path())
-        .filter(|path| path.extension().is_some_and(|ext| ext == "whl"))
+        .filter(|path| path.to_string_lossy().ends_with(suffix))
         .collect();
-    assert_eq!(wheels.len(), 1, "expected one wheel in {}: {wheels:?}", dir.display());
-    wheels.into_iter().next().unwrap()
+    assert_eq!(files.len(), 1, "expected one {suffix} in {}: {files:?}", dir.display());
+    files.into_iter().next().unwrap()
 }

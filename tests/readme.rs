@@ -250,3 +250,108 @@ fn readme_examples_build_and_run_from_the_build_tree() {
         }
     }
 }
+
+/// The README's `## NAME` sections, in order, with their text.
+fn sections(readme: &str) -> Vec<(String, String)> {
+    let mut sections: Vec<(String, String)> = Vec::new();
+    let mut fenced = false;
+    for line in readme.lines() {
+        if line.starts_with("```") {
+            fenced = !fenced;
+        }
+        match line.strip_prefix("## ") {
+            Some(name) if !fenced => sections.push((name.to_string(), String::new())),
+            _ => {
+                if let Some((_, text)) = sections.last_mut() {
+                    text.push_str(line);
+                    text.push('\n');
+                }
+            }
+        }
+    }
+    sections
+}
+
+/// GitHub's anchor for a heading: lower case, punctuation dropped, spaces as hyphens.
+fn anchor(heading: &str) -> String {
+    heading
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || *c == ' ' || *c == '-' || *c == '_')
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+#[test]
+fn a_quick_start_for_each_audience_then_contents_within_80_lines() {
+    let readme = std::fs::read_to_string(Path::new(CRATE_DIR).join("README.md")).expect("README.md");
+    let sections = sections(&readme);
+    let names: Vec<&str> = sections.iter().map(|(name, _)| name.as_str()).collect();
+    assert_eq!(
+        names[..2],
+        ["Quick start", "Contents"],
+        "the README opens with these sections"
+    );
+    let quick_start = &sections[0].1;
+    for audience in ["**C**", "**C++**", "**Rust**", "**Python**", "**glTF files**"] {
+        assert!(
+            quick_start.contains(audience),
+            "the quick start has no part for {audience}"
+        );
+    }
+    let contents_line = readme.lines().position(|line| line == "## Contents").unwrap() + 1;
+    assert!(contents_line <= 80, "the contents list starts on line {contents_line}");
+    // Every link of the contents list leads to a heading.
+    let headings: Vec<String> = readme
+        .lines()
+        .filter_map(|line| line.strip_prefix("## ").or_else(|| line.strip_prefix("### ")))
+        .map(anchor)
+        .collect();
+    for link in sections[1].1.split("](#").skip(1) {
+        let target = link.split(')').next().unwrap();
+        assert!(
+            headings.iter().any(|h| h == target),
+            "the contents link #{target} leads nowhere"
+        );
+    }
+}
+
+/// The names of the tests, in `dir`'s files, that skip without the corpus: the functions whose
+/// body checks `needs::CORPUS`.
+fn corpus_tests(dir: &Path) -> Vec<String> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|ext| ext != "rs") {
+            continue;
+        }
+        let source = std::fs::read_to_string(&path).unwrap();
+        // Spelt in two pieces, so that this file does not name itself.
+        for (at, _) in source.match_indices(concat!("needs::CORPUS", ".found_or_skip()")) {
+            let before = &source[..at];
+            let name = before.rsplit("fn ").next().unwrap().split('(').next().unwrap();
+            names.push(name.trim().to_string());
+        }
+    }
+    names
+}
+
+#[test]
+fn the_readme_names_every_test_that_needs_the_corpus() {
+    let readme = std::fs::read_to_string(Path::new(CRATE_DIR).join("README.md")).expect("README.md");
+    let (_, corpus) = sections(&readme)
+        .into_iter()
+        .find(|(name, _)| name == "Test corpus")
+        .expect("a Test corpus section");
+    let mut tests = Vec::new();
+    for dir in ["crates/tbasis/tests", "tests", "tools/gltf/tests"] {
+        tests.extend(corpus_tests(&Path::new(CRATE_DIR).join(dir)));
+    }
+    assert!(tests.len() >= 11, "only {} corpus tests found: {tests:?}", tests.len());
+    for test in &tests {
+        assert!(
+            corpus.contains(&format!("`{test}`")),
+            "the README's \"Test corpus\" does not name {test}, which needs the corpus"
+        );
+    }
+}

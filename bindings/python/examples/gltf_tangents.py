@@ -1,6 +1,7 @@
 """MikkTSpace tangents for a glTF file: load it with trimesh, compute the tangents normal maps are
 baked against, write them into a new .glb as each primitive's TANGENT attribute.
 
+    pip install "./bindings/python[gltf]"    # the package with trimesh and Pillow
     python gltf_tangents.py IN.gltf OUT.glb
 
 What trimesh does with glTF (checked by the tests, for trimesh 4 and 5):
@@ -15,19 +16,38 @@ What trimesh does with glTF (checked by the tests, for trimesh 4 and 5):
 
 MikkTSpace gives a tangent per triangle corner; where the corners of one vertex disagree (mirror
 seams), ``split_corners`` duplicates that vertex, and every attribute gets the copies. Without
-pillow, trimesh drops textures on load, so the written file has none.
+Pillow, trimesh drops the images and textures on load, so the example refuses to run without it.
 """
 
 from __future__ import annotations
 
+import importlib
 import json
 import struct
 import sys
 
 import numpy as np
-import trimesh
 
 import tbasis
+
+NEEDS = (
+    'gltf_tangents.py needs trimesh and Pillow (without Pillow the written file would lose its images and '
+    'textures): pip install "tbasis[gltf]", or from a clone pip install "./bindings/python[gltf]"'
+)
+
+
+def importable(module: str) -> bool:
+    try:
+        importlib.import_module(module)
+    except ImportError:
+        return False
+    return True
+
+
+if not (importable("trimesh") and importable("PIL.Image")):
+    sys.exit(NEEDS)
+
+import trimesh  # noqa: E402  (after the check, which names the extra to install)
 
 
 def with_tangents(mesh: trimesh.Trimesh, visual: trimesh.visual.TextureVisuals) -> trimesh.Trimesh:

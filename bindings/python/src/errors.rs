@@ -22,10 +22,9 @@ create_exception!(
 pub type ReportTuple = (usize, Option<usize>, usize, usize, usize, usize, usize, usize, usize);
 
 pub fn report_tuple(report: &Report) -> ReportTuple {
-    let first = report.first_degenerate_triangle;
     (
         report.degenerate_triangles,
-        (first != usize::MAX).then_some(first),
+        report.first_degenerate_triangle,
         report.fallback_vertices,
         report.mirrored_vertices,
         report.unreferenced_vertices,

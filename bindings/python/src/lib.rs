@@ -6,15 +6,17 @@
 //! with the GIL released while the library runs. It still checks every array it is given, so that
 //! a direct call cannot make it read or write outside an array.
 
-// The C library's option values and statuses, which the package shares (src/ of the repository).
+// The C library's option values and statuses, which the package shares: `src/c_abi/` holds links
+// to the repository's `src/codes.rs` and `src/status.rs`, which the source distribution stores as
+// files.
 #[allow(dead_code)]
-#[path = "../../../src/codes.rs"]
+#[path = "c_abi/codes.rs"]
 mod codes;
 mod errors;
 mod generate;
 mod split;
 #[allow(dead_code, non_camel_case_types)]
-#[path = "../../../src/status.rs"]
+#[path = "c_abi/status.rs"]
 mod status;
 mod transform;
 mod views;

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 import gltf
-from support import CORPUS, require
+from support import CORPUS, require_corpus_file
 
 MANIFEST = CORPUS / "MANIFEST.tsv"
 
@@ -42,7 +42,7 @@ def paths() -> list[str]:
 
 
 def require_corpus() -> None:
-    require(MANIFEST.is_file(), f'the mesh corpus ({MANIFEST}; README: "Test corpus")')
+    require_corpus_file(MANIFEST)
 
 
 def parts(relative: str) -> list[Part]:

@@ -28,6 +28,11 @@ def require(present: bool, what: str) -> None:
     pytest.skip(f"needs {what}")
 
 
+def require_corpus_file(path: Path) -> None:
+    """Skips the test (under CI: fails it) when the mesh corpus file ``path`` is absent."""
+    require(path.is_file(), f'the mesh corpus file {path} (scripts/fetch-corpus fetches it; README: "Test corpus")')
+
+
 def same_bits(a: NDArray[Any], b: NDArray[Any]) -> bool:
     """Bitwise equality of two float32 arrays, NaN payloads and signed zeros included."""
     a, b = np.ascontiguousarray(a, dtype=np.float32), np.ascontiguousarray(b, dtype=np.float32)

@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 import gltf
 import tbasis
 from meshes import torus
-from support import CORPUS, EXAMPLES, require, same_bits
+from support import CORPUS, EXAMPLES, require_corpus_file, same_bits
 
 MIRROR_TEST = CORPUS / "khronos" / "NormalTangentMirrorTest.glb"  # stored tangents: mikktspace-exact
 
@@ -106,10 +106,35 @@ def test_gltf_example_splits_seams_and_writes_mikktspace_tangents(tmp_path: Path
     assert same_bits(after.positions[after.indices.astype(np.int64)], before.positions[before.indices.astype(np.int64)])
 
 
+def test_gltf_example_refuses_to_run_without_pillow(tmp_path: Path) -> None:
+    mesh = torus(nu=8, nv=4)
+    source, target = tmp_path / "in.glb", tmp_path / "out.glb"
+    write_glb(source, mesh.positions, mesh.normals, mesh.uvs, mesh.indices.reshape(-1, 3))
+    # The example run with Pillow made unimportable.
+    without_pillow = (
+        "import runpy, sys; sys.modules['PIL'] = None; sys.argv = sys.argv[1:]; "
+        "runpy.run_path(sys.argv[0], run_name='__main__')"
+    )
+    run = subprocess.run(
+        [sys.executable, "-c", without_pillow, str(EXAMPLES / "gltf_tangents.py"), str(source), str(target)],
+        capture_output=True,
+        text=True,
+    )
+    assert run.returncode == 1
+    assert 'pip install "tbasis[gltf]"' in run.stderr and "Pillow" in run.stderr
+    assert not target.exists()
+
+
 def test_gltf_example_matches_the_tangents_blender_stored(tmp_path: Path) -> None:
-    require(MIRROR_TEST.is_file(), f"the mesh corpus ({MIRROR_TEST})")
+    require_corpus_file(MIRROR_TEST)
     target = tmp_path / "out.glb"
     run_example(MIRROR_TEST, target)
+    # With Pillow (the gltf extra), the images and the normal texture are written too (trimesh may
+    # write an image once per texture that uses it).
+    source_document, _ = gltf.read(MIRROR_TEST)
+    written_document, _ = gltf.read(target)
+    assert len(written_document.get("images", [])) >= len(source_document["images"]) > 0
+    assert any("normalTexture" in material for material in written_document["materials"])
     (stored,) = gltf.primitives(MIRROR_TEST)
     (written,) = gltf.primitives(target)
     assert stored.tangents is not None and written.tangents is not None

@@ -356,7 +356,7 @@ fn errors_write_nothing() {
         assert!(run.untouched(), "{:?} wrote output", error);
         if error == ErrorKind::DegenerateUv {
             assert_eq!(run.report.degenerate_triangles, 1);
-            assert_eq!(run.report.first_degenerate_triangle, 0);
+            assert_eq!(run.report.first_degenerate_triangle, Some(0));
         }
     }
 

@@ -449,7 +449,7 @@ struct Outcome {
 fn unwritten_report() -> Report {
     Report {
         degenerate_triangles: 12_345,
-        first_degenerate_triangle: 12_345,
+        first_degenerate_triangle: Some(12_345),
         fallback_vertices: 12_345,
         mirrored_vertices: 12_345,
         unreferenced_vertices: 12_345,
@@ -762,11 +762,13 @@ fn check_report(s: &Scenario, report: &Report, refused: bool) -> Result<(), Test
 
     prop_assert_eq!(r.unreferenced_vertices, unreferenced);
     prop_assert!(r.degenerate_triangles <= triangles);
-    if r.degenerate_triangles == 0 {
-        prop_assert_eq!(r.first_degenerate_triangle, usize::MAX);
-    } else {
-        prop_assert!(r.first_degenerate_triangle < triangles);
-        prop_assert!(r.degenerate_triangles <= triangles - r.first_degenerate_triangle);
+    match r.first_degenerate_triangle {
+        None => prop_assert_eq!(r.degenerate_triangles, 0),
+        Some(first) => {
+            prop_assert!(r.degenerate_triangles > 0);
+            prop_assert!(first < triangles);
+            prop_assert!(r.degenerate_triangles <= triangles - first);
+        }
     }
     prop_assert!(r.mirrored_vertices <= n - unreferenced);
     prop_assert!(r.fallback_vertices + r.inherited_vertices <= n);

@@ -72,7 +72,7 @@ impl Expected {
         };
         Report {
             degenerate_triangles: self.degenerate,
-            first_degenerate_triangle: self.first.unwrap_or(usize::MAX),
+            first_degenerate_triangle: self.first,
             fallback_vertices,
             mirrored_vertices: self.mirrored,
             unreferenced_vertices: self.unreferenced,
@@ -622,7 +622,7 @@ fn empty_mesh() {
             let mut bitangent_bytes = [0x5Au8; 32];
             let mut report = Report {
                 degenerate_triangles: 7,
-                first_degenerate_triangle: 7,
+                first_degenerate_triangle: Some(7),
                 fallback_vertices: 7,
                 mirrored_vertices: 7,
                 unreferenced_vertices: 7,
@@ -644,7 +644,7 @@ fn empty_mesh() {
             };
             assert_eq!(result, Ok(()), "{}: {policy:?}", case.name);
             assert_eq!(report, Report::default(), "{}: {policy:?}", case.name);
-            assert_eq!(report.first_degenerate_triangle, usize::MAX);
+            assert_eq!(report.first_degenerate_triangle, None);
             assert!(tangent_bytes.iter().all(|&b| b == 0xA5) && bitangent_bytes.iter().all(|&b| b == 0x5A));
         }
     }

@@ -590,7 +590,7 @@ pub fn write_case_file(path: &Path, cases: &[Case]) -> std::io::Result<()> {
             let r = case.expected_report(policy);
             let fields = [
                 r.degenerate_triangles,
-                r.first_degenerate_triangle,
+                r.first_degenerate_triangle.unwrap_or(usize::MAX),
                 r.fallback_vertices,
                 r.mirrored_vertices,
                 r.unreferenced_vertices,

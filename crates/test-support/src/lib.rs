@@ -9,6 +9,8 @@ pub mod load;
 pub mod mikktspace_reference;
 pub mod mikktspace_scenes;
 pub mod needs;
+#[cfg(test)]
+mod needs_tests;
 pub mod proptest_config;
 pub mod run;
 pub mod scenes;

@@ -12,105 +12,72 @@
 //! }
 //! ```
 //!
-//! Where it is missing, the test prints `skipped: needs valgrind (Debian: valgrind)` and passes;
-//! under CI (`CI` set) it fails instead ([`Need::found_or_skip`]).
+//! Where it is missing, the test prints `skipped: needs valgrind (Debian: valgrind)`, naming only
+//! what is missing now and how to get it, and passes; under CI (`CI` set) it fails instead
+//! ([`Need::found_or_skip`]). Everything is looked for when the test runs, never when it is
+//! compiled, so that what is added after a build counts at the next `cargo test`.
 //!
-//! `tools/gltf` includes this file by path (through `tests/common/needs.rs`) in its build script,
-//! which compiles its tests that need something missing as ignored, with the cfg
-//! `tbasis_missing_<name>`: so it uses only the standard library.
+//! `tools/gltf` includes this file by path (through `tests/common/needs.rs`): so it uses only the
+//! standard library.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 /// Something tests need that a fresh clone may lack.
 pub struct Need {
-    /// Its name; `tools/gltf` sets the cfg `tbasis_missing_<name>` when it is missing.
-    pub name: &'static str,
-    /// What it is and where to get it, for messages.
-    pub what: &'static str,
     probe: Probe,
 }
 
 enum Probe {
-    /// `../shared/meshes/MANIFEST.tsv` beside the crate.
+    /// Every file the repository's corpus manifests list, in `../shared/meshes` beside the clone.
     Corpus,
-    /// Every program is on `PATH`.
-    Programs(&'static [&'static str]),
+    /// Every program is on `PATH`: (program, the Debian package that has it).
+    Programs(&'static [(&'static str, &'static str)]),
     /// `cc` compiles, links and runs a program with `-fsanitize=address,undefined`.
     Sanitizers,
-    /// `python3` imports every module.
-    Python(&'static str),
-    /// `node` loads the package installed at this path below the repository root.
-    NodeModule(&'static str),
+    /// python3 3.9 or later, with its venv and pip modules.
+    PythonVenv,
+    /// node, and the glTF Validator's package at [`GLTF_VALIDATOR_MODULE`] in its pinned version.
+    GltfValidator,
 }
 
-pub const CORPUS: Need = Need {
-    name: "corpus",
-    what: "the mesh corpus ../shared/meshes beside the clone (README: \"Test corpus\")",
-    probe: Probe::Corpus,
-};
+pub const CORPUS: Need = Need { probe: Probe::Corpus };
 pub const BINUTILS: Need = Need {
-    name: "binutils",
-    what: "nm and readelf (Debian: binutils)",
-    probe: Probe::Programs(&["nm", "readelf"]),
+    probe: Probe::Programs(&[("nm", "binutils"), ("readelf", "binutils")]),
 };
 pub const CXX: Need = Need {
-    name: "cxx",
-    what: "a C++ compiler, c++ (Debian: g++)",
-    probe: Probe::Programs(&["c++"]),
+    probe: Probe::Programs(&[("c++", "g++")]),
 };
 pub const VALGRIND: Need = Need {
-    name: "valgrind",
-    what: "valgrind (Debian: valgrind)",
-    probe: Probe::Programs(&["valgrind"]),
+    probe: Probe::Programs(&[("valgrind", "valgrind")]),
 };
 pub const SANITIZERS: Need = Need {
-    name: "sanitizers",
-    what: "the AddressSanitizer and UBSan runtimes of cc (Debian: libasan8, libubsan1)",
     probe: Probe::Sanitizers,
 };
 pub const CMAKE: Need = Need {
-    name: "cmake",
-    what: "cmake and make (Debian: cmake, make)",
-    probe: Probe::Programs(&["cmake", "make"]),
+    probe: Probe::Programs(&[("cmake", "cmake"), ("make", "make")]),
+};
+pub const GIT: Need = Need {
+    probe: Probe::Programs(&[("git", "git")]),
 };
 pub const PKG_CONFIG: Need = Need {
-    name: "pkg_config",
-    what: "pkg-config (Debian: pkg-config)",
-    probe: Probe::Programs(&["pkg-config"]),
+    probe: Probe::Programs(&[("pkg-config", "pkg-config")]),
 };
 pub const PYTHON_VENV: Need = Need {
-    name: "python_venv",
-    what: "python3 (3.9 or later) with its venv and pip modules (Debian: python3-venv, python3-pip); the \
-           Python package's test then fetches maturin, numpy, pytest, mypy and trimesh from PyPI",
-    probe: Probe::Python("import sys, venv, ensurepip; assert sys.version_info >= (3, 9)"),
+    probe: Probe::PythonVenv,
 };
-
 pub const GLTF_VALIDATOR: Need = Need {
-    name: "gltf_validator",
-    what: "node with the Khronos glTF Validator in tools/gltf/node_modules_dir (Debian: nodejs, npm; then \
-           npm install --prefix tools/gltf/node_modules_dir gltf-validator@2.0.0-dev.3.10)",
-    probe: Probe::NodeModule(GLTF_VALIDATOR_MODULE),
+    probe: Probe::GltfValidator,
 };
 
 /// Where `.ci/run` installs the glTF Validator, below the repository root.
 pub const GLTF_VALIDATOR_MODULE: &str = "tools/gltf/node_modules_dir/node_modules/gltf-validator";
-
-pub const ALL: [&Need; 9] = [
-    &CORPUS,
-    &BINUTILS,
-    &CXX,
-    &VALGRIND,
-    &SANITIZERS,
-    &CMAKE,
-    &PKG_CONFIG,
-    &GLTF_VALIDATOR,
-    &PYTHON_VENV,
-];
+/// The glTF Validator's version the tests expect (`.ci/run` installs it).
+pub const GLTF_VALIDATOR_VERSION: &str = "2.0.0-dev.3.10";
 
 /// The repository's root, whichever crate of the workspace compiles this file: the nearest folder
 /// at or above the crate's that holds this file.
-pub fn repo_dir() -> std::path::PathBuf {
+pub fn repo_dir() -> PathBuf {
     let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
     manifest
         .ancestors()
@@ -119,89 +86,146 @@ pub fn repo_dir() -> std::path::PathBuf {
         .to_path_buf()
 }
 
-/// The corpus manifest beside the repository, whose presence stands for the corpus.
-pub fn corpus_manifest() -> std::path::PathBuf {
-    repo_dir().join("../shared/meshes/MANIFEST.tsv")
+/// The corpus folder, `../shared/meshes` beside the repository.
+pub fn corpus_dir() -> PathBuf {
+    repo_dir().join("../shared/meshes")
+}
+
+/// The corpus manifest beside the repository, which the tests read.
+pub fn corpus_manifest() -> PathBuf {
+    corpus_dir().join("MANIFEST.tsv")
+}
+
+/// The files of the corpus, relative to its folder: `MANIFEST.tsv` and every path of the
+/// repository's manifests (`corpus/MANIFEST.tsv`, `corpus/companions.tsv`), which
+/// `scripts/fetch-corpus` fetches.
+pub fn corpus_files() -> Vec<String> {
+    let mut files = vec!["MANIFEST.tsv".to_string()];
+    for list in ["corpus/MANIFEST.tsv", "corpus/companions.tsv"] {
+        let path = repo_dir().join(list);
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        files.extend(
+            text.lines()
+                .skip(1)
+                .filter_map(|line| line.split('\t').next())
+                .filter(|name| !name.is_empty())
+                .map(str::to_string),
+        );
+    }
+    files
 }
 
 impl Need {
-    /// Whether it is there now.
-    pub fn found(&self) -> bool {
+    /// What is missing now and how to get it, or `None` when it is all there.
+    pub fn missing(&self) -> Option<String> {
         match self.probe {
-            Probe::Corpus => corpus_manifest().is_file(),
-            Probe::Programs(programs) => programs.iter().all(|p| on_path(p)),
-            Probe::Sanitizers => sanitizers_run(),
-            Probe::Python(code) => succeeds(Command::new("python3").args(["-c", code])),
-            Probe::NodeModule(path) => succeeds(
-                Command::new("node")
-                    .args(["-e", "require(process.argv[1])"])
-                    .arg(repo_dir().join(path)),
-            ),
+            Probe::Corpus => missing_corpus(),
+            Probe::Programs(programs) => missing_programs(programs),
+            Probe::Sanitizers => (!sanitizers_run())
+                .then(|| "the AddressSanitizer and UBSan runtimes of cc (Debian: libasan8, libubsan1)".to_string()),
+            Probe::PythonVenv => missing_python_venv(),
+            Probe::GltfValidator => missing_gltf_validator(),
         }
     }
 
     /// Whether it is there, for a test to return early when it is not: then, under CI (`CI` set),
-    /// panics like [`Need::require`]; elsewhere prints `skipped: needs <what>` to the test's
-    /// stderr and returns false. The message bypasses the test harness's capture, so that
-    /// `cargo test` shows it although the test passes.
+    /// panics; elsewhere prints `skipped: needs <what is missing>` to the test's stderr and
+    /// returns false. The message bypasses the test harness's capture, so that `cargo test` shows
+    /// it although the test passes.
     pub fn found_or_skip(&self) -> bool {
-        if self.found() {
+        let Some(missing) = self.missing() else {
             return true;
-        }
+        };
         if std::env::var_os("CI").is_some() {
-            self.missing_under_ci();
+            panic!("missing: {missing}; CI must provide it");
         }
         let thread = std::thread::current();
         let test = thread.name().unwrap_or("a test");
         // One write of the whole line, so that tests running at the same time do not interleave.
-        let line = format!("{test}: skipped: needs {}\n", self.what);
+        let line = format!("{test}: skipped: needs {missing}\n");
         let _ = std::io::Write::write_all(&mut std::io::stderr(), line.as_bytes());
         false
     }
-
-    /// Panics unless it is there: under CI, which must provide it, or (`tools/gltf`) in a test
-    /// compiled to run, which means it was removed after `build.rs` looked.
-    pub fn require(&self) {
-        if self.found() {
-            return;
-        }
-        if std::env::var_os("CI").is_some() {
-            self.missing_under_ci();
-        }
-        panic!(
-            "{} is missing but was there when build.rs looked; `touch build.rs` to compile the \
-             tests that need it as ignored",
-            self.what
-        );
-    }
-
-    fn missing_under_ci(&self) -> ! {
-        panic!("{} is missing; CI must provide it", self.what);
-    }
-
-    /// The need called `name`.
-    pub fn named(name: &str) -> Option<&'static Need> {
-        ALL.into_iter().find(|need| need.name == name)
-    }
 }
 
-/// For `tools/gltf`: fails when a need that its `build.rs` found missing (`missing_at_build`, its
-/// comma-separated `TBASIS_MISSING_NEEDS`) is found now: its tests stay compiled as ignored until
-/// `build_rs` changes, so the failure says to touch it.
-pub fn assert_none_appeared_since(missing_at_build: &str, build_rs: &str) {
-    let appeared: Vec<&str> = missing_at_build
-        .split(',')
-        .filter(|name| !name.is_empty())
-        .map(|name| Need::named(name).unwrap_or_else(|| panic!("build.rs names an unknown need {name}")))
-        .filter(|need| need.found())
-        .map(|need| need.what)
+/// The corpus files absent from its folder, named, with the command that fetches them.
+fn missing_corpus() -> Option<String> {
+    missing_corpus_files(&corpus_dir(), &corpus_files())
+}
+
+/// Which of `files` are absent from `dir`, named (the first two), with the command that fetches
+/// them; `None` when none is.
+pub(crate) fn missing_corpus_files(dir: &Path, files: &[String]) -> Option<String> {
+    let absent: Vec<&String> = files.iter().filter(|file| !dir.join(file).is_file()).collect();
+    let shown = match absent.as_slice() {
+        [] => return None,
+        [one] => one.to_string(),
+        [first, second] => format!("{first} and {second}"),
+        [first, second, rest @ ..] => format!("{first}, {second} and {} more", rest.len()),
+    };
+    Some(format!(
+        "the mesh corpus in {} ({shown} absent; scripts/fetch-corpus fetches it: README, \"Test corpus\")",
+        dir.display()
+    ))
+}
+
+/// The programs absent from `PATH` and their Debian packages.
+pub(crate) fn missing_programs(programs: &[(&str, &str)]) -> Option<String> {
+    let absent: Vec<&(&str, &str)> = programs.iter().filter(|(program, _)| !on_path(program)).collect();
+    if absent.is_empty() {
+        return None;
+    }
+    let names: Vec<&str> = absent.iter().map(|(program, _)| *program).collect();
+    let mut packages: Vec<&str> = absent.iter().map(|(_, package)| *package).collect();
+    packages.dedup();
+    Some(format!("{} (Debian: {})", names.join(" and "), packages.join(", ")))
+}
+
+fn missing_python_venv() -> Option<String> {
+    if !on_path("python3") {
+        return Some(
+            "python3, 3.9 or later, with its venv and pip modules (Debian: python3, python3-venv, python3-pip)".into(),
+        );
+    }
+    if !succeeds(Command::new("python3").args(["-c", "import sys; assert sys.version_info >= (3, 9)"])) {
+        return Some("python3 3.9 or later (an older one is on PATH)".into());
+    }
+    let absent: Vec<&str> = ["venv", "ensurepip"]
+        .into_iter()
+        .filter(|module| !succeeds(Command::new("python3").args(["-c", &format!("import {module}")])))
         .collect();
-    assert!(
-        appeared.is_empty(),
-        "found now, but missing when build.rs ran, so the tests needing them are compiled as \
-         ignored: {}; `touch {build_rs}` and run the tests again",
-        appeared.join("; ")
+    if absent.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "the python3 module{} {} (Debian: python3-venv, python3-pip); the Python package's test then \
+         fetches maturin, numpy, pytest, mypy, trimesh and Pillow from PyPI",
+        if absent.len() == 1 { "" } else { "s" },
+        absent.join(" and ")
+    ))
+}
+
+fn missing_gltf_validator() -> Option<String> {
+    let install = format!(
+        "npm install --prefix tools/gltf/node_modules_dir --no-audit --no-fund gltf-validator@{GLTF_VALIDATOR_VERSION}"
     );
+    if !on_path("node") {
+        return Some(format!(
+            "node (Debian: nodejs, npm), then the Khronos glTF Validator {GLTF_VALIDATOR_VERSION} ({install})"
+        ));
+    }
+    let package = repo_dir().join(GLTF_VALIDATOR_MODULE).join("package.json");
+    let pinned = format!("\"version\": \"{GLTF_VALIDATOR_VERSION}\"");
+    match std::fs::read_to_string(&package) {
+        Ok(text) if text.contains(&pinned) => None,
+        Ok(_) => Some(format!(
+            "the Khronos glTF Validator {GLTF_VALIDATOR_VERSION}, not the version in {} ({install})",
+            package.display()
+        )),
+        Err(_) => Some(format!(
+            "the Khronos glTF Validator {GLTF_VALIDATOR_VERSION} ({install})"
+        )),
+    }
 }
 
 /// Whether an executable file `program` is in a directory of `PATH`.

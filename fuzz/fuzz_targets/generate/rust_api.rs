@@ -66,7 +66,7 @@ fn check_against_c(
         }
         (None, Err(Error::DegenerateUv { triangle, report })) => {
             assert_eq!(
-                *triangle, report.first_degenerate_triangle,
+                Some(*triangle), report.first_degenerate_triangle,
                 "{what}, {options:?}: DegenerateUv names another triangle than its report"
             );
             let untouched = tangents.iter().all(|t| t.map(f32::to_bits) == [UNWRITTEN; 4]);

@@ -18,18 +18,17 @@ pub struct Args {
     pub inputs: Vec<PathBuf>,
 
     /// The output file, for a single input.
-    #[arg(
-        short,
-        long,
-        value_name = "FILE",
-        conflicts_with = "out_dir",
-        required_unless_present = "out_dir"
-    )]
+    #[arg(short, long, value_name = "FILE", conflicts_with = "out_dir")]
     pub output: Option<PathBuf>,
 
     /// The output folder: each input is written there under its own file name.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
+
+    /// Write nothing: report per file what would change. Exit status 0 when nothing would, 1
+    /// when something would, 2 on an error.
+    #[arg(long, conflicts_with_all = ["output", "out_dir"])]
+    pub check: bool,
 
     /// Replace the TANGENT attributes primitives already have (kept otherwise).
     #[arg(long)]
@@ -85,7 +84,8 @@ pub enum PolicyArg {
 #[derive(Clone, Debug)]
 pub struct Job {
     pub input: PathBuf,
-    pub output: PathBuf,
+    /// Where it is written; `None` with `--check`, which writes nothing.
+    pub output: Option<PathBuf>,
 }
 
 impl Args {
@@ -119,6 +119,16 @@ impl Args {
         for input in &self.inputs {
             kind_of(input)?;
         }
+        if self.check {
+            return Ok(self
+                .inputs
+                .iter()
+                .map(|input| Job {
+                    input: input.clone(),
+                    output: None,
+                })
+                .collect());
+        }
         if let Some(output) = &self.output {
             let [input] = self.inputs.as_slice() else {
                 return Err(format!(
@@ -135,10 +145,12 @@ impl Args {
             }
             return Ok(vec![Job {
                 input: input.clone(),
-                output: output.clone(),
+                output: Some(output.clone()),
             }]);
         }
-        let dir = self.out_dir.as_ref().ok_or("give -o FILE or --out-dir DIR")?;
+        let dir = self.out_dir.as_ref().ok_or(
+            "no output given: -o FILE (one input) or --out-dir DIR (any number of inputs); --check writes nothing",
+        )?;
         let mut names = HashSet::new();
         self.inputs
             .iter()
@@ -155,7 +167,7 @@ impl Args {
                 }
                 Ok(Job {
                     input: input.clone(),
-                    output: dir.join(name),
+                    output: Some(dir.join(name)),
                 })
             })
             .collect()

@@ -12,8 +12,16 @@ use crate::convert::{convert, Outcome, Settings};
 /// From this many files on, a progress bar shows (on a terminal only).
 const LARGE_BATCH: usize = 8;
 
-/// Converts every job on `workers` threads; returns how many failed.
-pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> usize {
+/// How a batch went.
+pub struct Totals {
+    /// Files that could not be converted (or, with `--check`, read and computed).
+    pub failed: usize,
+    /// Files that were, or with `--check` would be, changed.
+    pub changed: usize,
+}
+
+/// Converts every job on `workers` threads.
+pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> Totals {
     let bar = if jobs.len() >= LARGE_BATCH && !quiet {
         let bar = ProgressBar::new(jobs.len() as u64);
         let style = ProgressStyle::with_template("{bar:40} {pos}/{len} files, {elapsed} elapsed, about {eta} left")
@@ -25,6 +33,7 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> us
     };
     let next = AtomicUsize::new(0);
     let failed = AtomicUsize::new(0);
+    let changed = AtomicUsize::new(0);
     let work = || {
         while let Some(job) = jobs.get(next.fetch_add(1, Ordering::Relaxed)) {
             // A bug met in one file must not end the batch.
@@ -35,8 +44,14 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> us
                 Ok(_) => {}
                 Err(message) => eprintln!("tbasis-gltf: {}: {message}", job.input.display()),
             });
-            if result.is_err() {
-                failed.fetch_add(1, Ordering::Relaxed);
+            match &result {
+                Ok(outcome) if outcome.changes() => {
+                    changed.fetch_add(1, Ordering::Relaxed);
+                }
+                Ok(_) => {}
+                Err(_) => {
+                    failed.fetch_add(1, Ordering::Relaxed);
+                }
             }
             bar.inc(1);
         }
@@ -48,23 +63,36 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> us
         work();
     });
     bar.finish_and_clear();
-    failed.into_inner()
+    Totals {
+        failed: failed.into_inner(),
+        changed: changed.into_inner(),
+    }
 }
 
-/// `in.glb -> out.glb: 3 primitives done, 120 vertices added, 0.25 s`, then one indented line
-/// per primitive left as it was.
+/// `in.glb -> out.glb: 3 primitives done, 120 vertices added, 0.25 s`, or with `--check`
+/// `in.glb: would change 3 primitives, 120 vertices added, 0 corners repaired` (or `in.glb:
+/// nothing to change`), then one indented line per primitive left as it was.
 fn summary(job: &Job, outcome: &Outcome) -> String {
     let plural = |n: usize, word: &str| format!("{n} {word}{}", if n == 1 { "" } else { "s" });
-    let mut line = format!(
-        "{} -> {}: {} done, {} added, {:.2} s",
-        job.input.display(),
-        job.output.display(),
-        plural(outcome.done, "primitive"),
-        plural(outcome.vertices_added, "vertex").replace("vertexs", "vertices"),
-        outcome.elapsed.as_secs_f64()
-    );
-    if outcome.repaired_corners > 0 {
-        line += &format!(", {} repaired", plural(outcome.repaired_corners, "corner"));
+    let vertices = plural(outcome.vertices_added, "vertex").replace("vertexs", "vertices");
+    let corners = plural(outcome.repaired_corners, "corner");
+    let mut line = match &job.output {
+        None if outcome.changes() => format!(
+            "{}: would change {}, {vertices} added, {corners} repaired",
+            job.input.display(),
+            plural(outcome.done, "primitive"),
+        ),
+        None => format!("{}: nothing to change", job.input.display()),
+        Some(output) => format!(
+            "{} -> {}: {} done, {vertices} added, {:.2} s",
+            job.input.display(),
+            output.display(),
+            plural(outcome.done, "primitive"),
+            outcome.elapsed.as_secs_f64()
+        ),
+    };
+    if job.output.is_some() && outcome.repaired_corners > 0 {
+        line += &format!(", {corners} repaired");
     }
     if !outcome.left.is_empty() {
         line += &format!(", {} left as it was:", plural(outcome.left.len(), "primitive"));

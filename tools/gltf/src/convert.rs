@@ -39,7 +39,15 @@ pub struct Outcome {
     pub elapsed: Duration,
 }
 
-/// Converts `job.input` into `job.output`; on error nothing has been written.
+impl Outcome {
+    /// Whether the file would be written with other contents.
+    pub fn changes(&self) -> bool {
+        self.done > 0
+    }
+}
+
+/// Converts `job.input` into `job.output`; on error nothing has been written. Without an output
+/// (`--check`), computes everything, writes nothing and says what would change.
 pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     let start = Instant::now();
     let mut asset = io::read(&job.input)?;
@@ -73,8 +81,12 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     if !computed.is_empty() {
         grown = append(&mut asset, &sources, &users, &computed, &mut outcome)?;
     }
-    let side_file = finish_buffers(&mut asset, original_buffers, &job.output)?;
-    rebase_uris(&mut asset, original_buffers, &job.output)?;
+    let Some(output) = &job.output else {
+        outcome.elapsed = start.elapsed();
+        return Ok(outcome);
+    };
+    let side_file = finish_buffers(&mut asset, original_buffers, output)?;
+    rebase_uris(&mut asset, original_buffers, output)?;
     let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
     if let Some(path) = side_file {
         let added = asset.buffers.last().and_then(Option::as_deref).unwrap_or_default();
@@ -96,7 +108,7 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
             vec![document.as_slice()]
         }
     };
-    files.push((job.output.clone(), main));
+    files.push((output.clone(), main));
     io::write_files(&files, &job.input)?;
     outcome.elapsed = start.elapsed();
     Ok(outcome)

@@ -1,7 +1,9 @@
 //! `tbasis-gltf`: writes TANGENT attributes into glTF files (README: "tbasis-gltf").
 //!
 //! Exit status: 0 when every file was written, 1 when any file failed (each failure is reported
-//! on stderr and leaves no output), 2 for a bad command line.
+//! on stderr and leaves no output), 2 for a bad command line. With `--check`, which writes
+//! nothing: 0 when no file would change, 1 when some would, 2 for a bad command line or a file
+//! that failed.
 
 mod accessor;
 mod args;
@@ -45,13 +47,13 @@ fn main() -> ExitCode {
         // Cores the file workers leave idle go to the primitives of each file.
         threads: (cores / workers).max(1),
     };
-    let failed = batch::run(&jobs, &settings, workers, args.quiet);
-    if failed == 0 {
-        ExitCode::SUCCESS
-    } else {
-        if jobs.len() > 1 {
-            eprintln!("tbasis-gltf: {failed} of {} files failed", jobs.len());
-        }
-        ExitCode::FAILURE
+    let totals = batch::run(&jobs, &settings, workers, args.quiet);
+    if totals.failed > 0 && jobs.len() > 1 {
+        eprintln!("tbasis-gltf: {} of {} files failed", totals.failed, jobs.len());
+    }
+    match (args.check, totals.failed, totals.changed) {
+        (false, 0, _) | (true, 0, 0) => ExitCode::SUCCESS,
+        (false, _, _) | (true, 0, _) => ExitCode::FAILURE,
+        (true, _, _) => ExitCode::from(2),
     }
 }

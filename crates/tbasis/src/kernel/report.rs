@@ -16,16 +16,17 @@
 /// let report = generate(&mesh, &Options::default(), &mut Output::new(&mut tangents))?;
 /// assert_eq!(report.unreferenced_vertices, 1);
 /// assert_eq!(report.degenerate_triangles, 0);
-/// assert_eq!(report.first_degenerate_triangle, usize::MAX);
+/// assert_eq!(report.first_degenerate_triangle, None);
 /// # Ok::<(), tbasis::Error>(())
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Report {
     /// Triangles whose UV quality is below the threshold, whose positions have zero area, or
     /// whose inputs are not finite. Policy LEGACY counts exactly-zero UV determinants only.
     pub degenerate_triangles: usize,
-    /// Index of the first such triangle; `usize::MAX` when none.
-    pub first_degenerate_triangle: usize,
+    /// Index of the first such triangle; `None` when there is none (the C report says
+    /// `TBASIS_NO_TRIANGLE`).
+    pub first_degenerate_triangle: Option<usize>,
     /// Vertices given the fallback frame built from their normal alone.
     pub fallback_vertices: usize,
     /// Vertices used by non-degenerate triangles of both handedness.
@@ -46,27 +47,11 @@ pub struct Report {
     pub split_vertices: usize,
 }
 
-impl Default for Report {
-    fn default() -> Self {
-        Report {
-            degenerate_triangles: 0,
-            first_degenerate_triangle: usize::MAX,
-            fallback_vertices: 0,
-            mirrored_vertices: 0,
-            unreferenced_vertices: 0,
-            inherited_vertices: 0,
-            abnormal_normals: 0,
-            repaired_corners: 0,
-            split_vertices: 0,
-        }
-    }
-}
-
 impl Report {
     /// Adds the counts another worker found over its own vertices and triangles.
     pub(crate) fn merge(&mut self, other: &Report) {
         self.degenerate_triangles += other.degenerate_triangles;
-        self.first_degenerate_triangle = self.first_degenerate_triangle.min(other.first_degenerate_triangle);
+        self.first_degenerate_triangle = earliest(self.first_degenerate_triangle, other.first_degenerate_triangle);
         self.fallback_vertices += other.fallback_vertices;
         self.mirrored_vertices += other.mirrored_vertices;
         self.unreferenced_vertices += other.unreferenced_vertices;
@@ -79,6 +64,14 @@ impl Report {
     /// Records triangle `t` as degenerate.
     pub(crate) fn note_degenerate(&mut self, t: usize) {
         self.degenerate_triangles += 1;
-        self.first_degenerate_triangle = self.first_degenerate_triangle.min(t);
+        self.first_degenerate_triangle = earliest(self.first_degenerate_triangle, Some(t));
+    }
+}
+
+/// The lower of two triangle indices, either of which may be absent.
+fn earliest(a: Option<usize>, b: Option<usize>) -> Option<usize> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        _ => a.or(b),
     }
 }

@@ -91,13 +91,13 @@ pub(crate) fn refuse_degenerate(mesh: &Mesh, options: &Options, memory: &mut [u8
 
 /// [`Error::DegenerateUv`] when `found` counted a degenerate triangle, with the vertex counts.
 fn refuse_if_degenerate(mesh: &Mesh, scratch: &Scratch, found: &mut Report) -> Result<(), Error> {
-    if found.degenerate_triangles == 0 {
+    let Some(triangle) = found.first_degenerate_triangle else {
         return Ok(());
-    }
+    };
     count_flags(scratch.flags, found);
     found.abnormal_normals = frame::count_abnormal_normals(mesh);
     Err(Error::DegenerateUv {
-        triangle: found.first_degenerate_triangle,
+        triangle,
         report: *found,
     })
 }
