@@ -1,7 +1,8 @@
 //! Method MIKKTSPACE against mikktspace.c itself (`crates/test-support/src/mikktspace_reference.rs`, through
 //! `mikktspace-sys`): per corner, the same bits (a NaN matching any NaN) under policy LEGACY; under
 //! SKIP, INHERIT and REJECT, the same bits wherever mikktspace.c's frame is usable and a valid
-//! frame with mikktspace.c's sign wherever it is not; per vertex, the first corner's frame. On a
+//! frame with mikktspace.c's sign wherever it is not, `repaired_corners` counting the corners whose
+//! frame was not even nearly valid; per vertex, the first corner's frame. On a
 //! mesh where mikktspace.c itself would run for seconds (`generate/mikktspace_cost.rs`), only the
 //! checks that need no reference: the robust policies' frames, the report's counts, the threads,
 //! the per-vertex frames.
@@ -13,32 +14,54 @@ use crate::call::describe_report;
 use crate::frames::{check_robust_tangent, dot, length, same_frame, show, unit};
 use crate::packed::Packed;
 
-/// What the library's test of a usable frame says about mikktspace.c's frame of a corner
-/// (finite, unit length and perpendicular to the unit normal, within 1e-5 in f32): the harness
-/// decides in f64 with a margin either side and leaves the rest undecided.
+/// Where mikktspace.c's frame of a corner stands against one of the library's tests: the harness
+/// decides in f64 with a margin of a tenth either side and leaves the rest undecided.
 #[derive(Clone, Copy, PartialEq, Eq)]
-enum Usable {
+enum Verdict {
     Surely,
     Maybe,
     Not,
 }
 
-fn usable(t: [f32; 4], normal: [f32; 3]) -> Usable {
+/// How far `t` is from unit length, and how far off the unit `normal`'s plane; `None` when not
+/// finite.
+fn deviations(t: [f32; 4], normal: [f32; 3]) -> Option<(f64, f64)> {
     let v = [t[0], t[1], t[2]].map(f64::from);
     if !t[..3].iter().all(|x| x.is_finite()) {
-        return Usable::Not;
+        return None;
     }
-    let mut off = (length(v) - 1.0).abs();
-    if let Some(n) = unit(normal) {
-        off = off.max(dot(v, n).abs());
-    }
-    if off <= 0.9e-5 {
-        Usable::Surely
-    } else if off > 1.1e-5 {
-        Usable::Not
+    let off_plane = unit(normal).map_or(0.0, |n| dot(v, n).abs());
+    Some(((length(v) - 1.0).abs(), off_plane))
+}
+
+fn verdict(within: impl Fn(f64) -> bool) -> Verdict {
+    if within(0.9) {
+        Verdict::Surely
+    } else if within(1.1) {
+        Verdict::Maybe
     } else {
-        Usable::Maybe
+        Verdict::Not
     }
+}
+
+/// Whether the library keeps mikktspace.c's frame bit for bit: finite, unit length and
+/// perpendicular to the unit normal, within 1e-5 in f32.
+fn usable(t: [f32; 4], normal: [f32; 3]) -> Verdict {
+    let Some((off_length, off_plane)) = deviations(t, normal) else {
+        return Verdict::Not;
+    };
+    verdict(|margin| off_length.max(off_plane) <= margin * 1e-5)
+}
+
+/// Whether making mikktspace.c's frame valid is no repair (`repaired_corners` does not count it):
+/// unit length within 1e-3, off the unit normal's plane by at most 1e-4 plus `|1 - |n|^2|`.
+fn sound(t: [f32; 4], normal: [f32; 3]) -> Verdict {
+    let Some((off_length, off_plane)) = deviations(t, normal) else {
+        return Verdict::Not;
+    };
+    let n = normal.map(f64::from);
+    let slack = if unit(normal).is_some() { (1.0 - dot(n, n)).abs() } else { 0.0 };
+    verdict(|margin| off_length <= margin * 1e-3 && off_plane <= margin * (1e-4 + slack))
 }
 
 /// Prints the mesh and stops: a mismatch against mikktspace.c is the finding this harness is for.
@@ -124,10 +147,10 @@ pub fn check_corners(mesh: &Packed, options: &Options, ours: &[[f32; 4]], report
             continue;
         }
         let normal = mesh.normals[v];
-        let state = usable(r, normal);
-        surely += usize::from(state == Usable::Not);
-        maybe += usize::from(state != Usable::Surely);
-        if state == Usable::Surely && t.map(f32::to_bits) != r.map(f32::to_bits) {
+        let state = sound(r, normal);
+        surely += usize::from(state == Verdict::Not);
+        maybe += usize::from(state != Verdict::Surely);
+        if usable(r, normal) == Verdict::Surely && t.map(f32::to_bits) != r.map(f32::to_bits) {
             mismatch(
                 mesh,
                 options,
