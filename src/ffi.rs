@@ -16,6 +16,7 @@ use tbasis::{
 };
 
 use crate::codes::*;
+use crate::fault::inject_panic;
 use crate::status::*;
 
 /// The triangle mesh, read in place. Each attribute pointer addresses vertex 0; vertex `i` starts
@@ -148,18 +149,6 @@ fn boundary_value<T>(body: impl FnOnce() -> Result<T, Failure>) -> Result<T, Fai
     };
     catch_unwind(AssertUnwindSafe(guarded)).unwrap_or(Err(Failure::Status(TBASIS_ERROR_INTERNAL)))
 }
-
-/// With the test-only feature `fault-injection`, panics when `TBASIS_INJECT_PANIC` is set, so that
-/// a C test can see every entry point turn a library bug into `TBASIS_ERROR_INTERNAL`.
-#[cfg(feature = "fault-injection")]
-fn inject_panic() {
-    if std::env::var_os("TBASIS_INJECT_PANIC").is_some() {
-        panic!("TBASIS_INJECT_PANIC is set");
-    }
-}
-
-#[cfg(not(feature = "fault-injection"))]
-fn inject_panic() {}
 
 /// Runs `body` and returns its status, a panic (a library bug) becoming `TBASIS_ERROR_INTERNAL`.
 fn boundary(body: impl FnOnce() -> Result<(), Failure>) -> tbasis_status {

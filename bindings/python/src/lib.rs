@@ -11,6 +11,8 @@
 #[path = "../../../src/codes.rs"]
 mod codes;
 mod errors;
+#[path = "../../../src/fault.rs"]
+mod fault;
 mod generate;
 mod split;
 #[allow(dead_code, non_camel_case_types)]
