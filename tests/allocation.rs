@@ -131,6 +131,9 @@ fn each_allocation_of_mikktspace_may_fail_and_the_call_says_so() {
     fail_each_allocation(&policies.map(|policy| (TBASIS_METHOD_MIKKTSPACE, policy)), small_cases);
 }
 
+/// A C entry point writing into the given elements, returning its status.
+type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
+
 /// For each `(method, policy)`, on `cases`, per vertex and per corner: for each `k` up
 /// to the number of allocations a successful call makes, the call whose `k`-th allocation fails
 /// returns `TBASIS_ERROR_OUT_OF_MEMORY` and writes no output byte.
@@ -176,7 +179,7 @@ fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Cas
             let per_corner = |corners: &mut [[f32; 4]]| unsafe {
                 ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut())
             };
-            let entries: [(&str, &dyn Fn(&mut [[f32; 4]]) -> u32, usize); 2] = [
+            let entries: [(&str, &Entry, usize); 2] = [
                 ("tbasis_generate", &per_vertex, case.vertex_count()),
                 ("tbasis_generate_corners", &per_corner, indices.len()),
             ];

@@ -58,7 +58,8 @@ fn check(what: &str, primitive: &Primitive, legacy: &[[f32; 4]], policy: Degener
     let (mut failures, mut near_misses, mut not_nearly_valid, mut moved) = (Vec::new(), 0, 0, 0);
     for (c, (&ours, &theirs)) in repaired.iter().zip(legacy).enumerate() {
         let normal = primitive.normals[primitive.indices[c] as usize];
-        let far = ours[3] != theirs[3] || !(angle_deg(ours, theirs) <= MAX_ANGLE_DEG);
+        let angle = angle_deg(ours, theirs);
+        let far = ours[3] != theirs[3] || angle.is_nan() || angle > MAX_ANGLE_DEG;
         moved += usize::from(far);
         if !nearly_valid(theirs, normal) {
             not_nearly_valid += 1;
@@ -68,8 +69,7 @@ fn check(what: &str, primitive: &Primitive, legacy: &[[f32; 4]], policy: Degener
         near_misses += usize::from(dot(xyz(theirs), n).abs() / dot(n, n).sqrt() > 1e-5);
         if far && failures.len() < 4 {
             failures.push(format!(
-                "{what} {policy:?}: corner {c}: mikktspace.c's {theirs:?} became {ours:?} ({:.3} degrees)",
-                angle_deg(ours, theirs)
+                "{what} {policy:?}: corner {c}: mikktspace.c's {theirs:?} became {ours:?} ({angle:.3} degrees)"
             ));
         }
     }
