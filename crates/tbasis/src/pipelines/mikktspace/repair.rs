@@ -7,8 +7,7 @@ use glam::Vec3 as GlamVec3;
 
 use super::NONE;
 use crate::kernel::frame::{
-    fallback_tangent, is_unit_and_perpendicular, length_and_direction, orthonormalize, FRAME_TOLERANCE,
-    NO_NORMAL_TANGENT,
+    fallback_tangent, is_unit_length, length_and_direction, orthonormalize, FRAME_TOLERANCE, NO_NORMAL_TANGENT,
 };
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::DegeneratePolicy;
@@ -19,22 +18,20 @@ use crate::kernel::vector::Vec3;
 /// is rounding, not a direction.
 const MIN_IN_PLANE: f32 = 1e-3;
 
-/// How far from unit length, and how far off the unit normal's plane, a tangent mikktspace.c
-/// wrote for a sound corner may be: making it valid then moves it by at most 1e-4 radians (0.006
-/// degrees), rounding rather than a repair. mikktspace.c removes the normal as the caller gave it
+/// How far off the unit normal's plane a tangent mikktspace.c wrote may be and still be kept bit
+/// for bit (at most 1e-4 radians, 0.006 degrees, from the plane). mikktspace.c removes the normal
 /// from each corner's term, then normalizes the group's sum, where terms that nearly cancel magnify
 /// the off-plane rounding (up to 6.7e-5 on the corpus's unit normals).
-const SOUND_LENGTH: f32 = 1e-3;
-const SOUND_OFF_PLANE: f32 = 1e-4;
+const KEPT_OFF_PLANE: f32 = 1e-4;
 
 /// A caller's normal as the repair reads it.
 #[derive(Clone, Copy)]
 struct Normal {
     /// Unit length; `None` when the normal is zero or not finite.
     unit: Option<GlamVec3>,
-    /// `|1 - |n|^2|`: against a normal off unit length, mikktspace.c's tangent is off the unit
-    /// normal's plane by up to this much more, the normal's error, not the tangent's (0.99996-long
-    /// normals leave tangents 1.1e-5 off).
+    /// `|1 - |n|^2|` for a normal unit length within 1e-3 (else 0): mikktspace.c removes the normal
+    /// as the caller gave it, so its tangent is off the unit normal's plane by up to this much
+    /// more, the normal's error, not the tangent's (0.99996-long normals leave tangents 1.1e-5 off).
     slack: f32,
 }
 
@@ -43,26 +40,26 @@ impl Normal {
         match length_and_direction(GlamVec3::from_array(mesh.normals.get(v))) {
             Some((length, unit)) => Normal {
                 unit: Some(unit),
-                slack: (1.0 - length * length).abs(),
+                slack: if is_unit_length(length) {
+                    (1.0 - length * length).abs()
+                } else {
+                    0.0
+                },
             },
             None => Normal { unit: None, slack: 0.0 },
         }
     }
 }
 
-/// True when `tangent` is a unit tangent perpendicular to the unit `normal`: kept bit for bit.
-fn is_valid(tangent: Vec3, normal: Normal) -> bool {
-    is_unit_and_perpendicular(GlamVec3::from_array(tangent), normal.unit, FRAME_TOLERANCE)
-}
-
-/// True when `tangent` is what mikktspace.c writes for a sound corner ([`SOUND_LENGTH`],
-/// [`SOUND_OFF_PLANE`] widened by the normal's own error): making it valid is not a repair.
-fn is_sound(tangent: Vec3, normal: Normal) -> bool {
+/// True when mikktspace.c's `tangent` is kept bit for bit: finite, unit length within
+/// [`FRAME_TOLERANCE`], and off the unit normal's plane by at most [`KEPT_OFF_PLANE`] plus the
+/// normal's own error.
+fn is_kept(tangent: Vec3, normal: Normal) -> bool {
     let t = GlamVec3::from_array(tangent);
-    let unit = t.is_finite() && (t.length() - 1.0).abs() <= SOUND_LENGTH;
+    let unit = t.is_finite() && (t.length() - 1.0).abs() <= FRAME_TOLERANCE;
     unit && normal
         .unit
-        .is_none_or(|n| n.dot(t).abs() <= SOUND_OFF_PLANE + normal.slack)
+        .is_none_or(|n| n.dot(t).abs() <= KEPT_OFF_PLANE + normal.slack)
 }
 
 /// The unit tangent nearest to `tangent` in the normal's plane: the normal removed, normalized.
@@ -75,12 +72,12 @@ fn nearest_valid(tangent: Vec3, normal: Normal) -> Option<Vec3> {
     }
 }
 
-/// Makes every corner tangent valid with the smallest change, the sign kept: a valid tangent stays
-/// as it is; one with a direction off the normal is moved into the normal's plane and normalized;
-/// one without (zero, not finite, along the normal) takes, under INHERIT, the tangent of the first
-/// corner of the same vertex that has one, else (and under SKIP and REJECT) the fallback tangent
-/// built from the normal. `report.repaired_corners` counts the corners that were not
-/// [`is_sound`]. `first_usable` holds a word per vertex.
+/// Makes every corner tangent valid with the smallest change, the sign kept: a tangent
+/// [`is_kept`] stays as it is; one with a direction off the normal's plane is moved into it and
+/// normalized; one without (zero, not finite, along the normal) takes, under INHERIT, the tangent
+/// of the first corner of the same vertex that has one, else (and under SKIP and REJECT) the
+/// fallback tangent built from the normal. `report.repaired_corners` counts the corners changed.
+/// `first_usable` holds a word per vertex.
 pub(crate) fn repair(
     mesh: &Mesh,
     policy: DegeneratePolicy,
@@ -93,8 +90,8 @@ pub(crate) fn repair(
     for (c, tangent) in tangents.iter_mut().enumerate() {
         let v = mesh.indices.corner(c);
         let normal = Normal::of_vertex(mesh, v);
-        if !is_valid(*tangent, normal) {
-            report.repaired_corners += usize::from(!is_sound(*tangent, normal));
+        if !is_kept(*tangent, normal) {
+            report.repaired_corners += 1;
             match nearest_valid(*tangent, normal) {
                 Some(moved) => *tangent = moved,
                 None => {
@@ -110,11 +107,11 @@ pub(crate) fn repair(
     if without_direction == 0 {
         return;
     }
-    // Every corner left invalid has no direction of its own.
+    // Every corner still not kept has no direction of its own.
     for c in 0..tangents.len() {
         let v = mesh.indices.corner(c);
         let normal = Normal::of_vertex(mesh, v);
-        if is_valid(tangents[c], normal) {
+        if is_kept(tangents[c], normal) {
             continue;
         }
         tangents[c] = match first_usable[v] {
