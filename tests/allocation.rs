@@ -220,3 +220,63 @@ fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Cas
     eprintln!("{calls} calls, {failed} allocations failed one at a time");
     assert!(failed > 0, "no call allocated: nothing was tested");
 }
+
+/// `tbasis_split_corners` on corners whose tangents differ at a mirror fold (it appends vertices):
+/// each of its allocations may fail, and then it writes nothing.
+#[test]
+fn each_allocation_of_a_seam_split_may_fail_and_the_call_says_so() {
+    use std::ptr::null_mut;
+
+    let case = mirror_fold();
+    let indices = case.indices.as_ref().unwrap();
+    let mesh = ffi::tbasis_mesh {
+        vertex_count: case.vertex_count(),
+        positions: case.positions.as_ptr().cast(),
+        positions_stride: 12,
+        normals: case.normals.as_ptr().cast(),
+        normals_stride: 12,
+        texcoords: null_mut(),
+        texcoords_stride: 0,
+        indices: indices.as_ptr().cast(),
+        index_count: indices.len(),
+        index_type: codes::TBASIS_INDEX_U32,
+    };
+    // Every corner a tangent of its own: every corner after a vertex's first is appended.
+    let corners: Vec<[f32; 4]> = (0..indices.len()).map(|c| [1.0, 0.0, 0.0, c as f32]).collect();
+    const UNTOUCHED: u32 = 0xdead;
+    let split = |new_indices: &mut [u32], sources: &mut [u32], appended: &mut usize| unsafe {
+        ffi::tbasis_split_corners(
+            &mesh,
+            corners.as_ptr().cast(),
+            16,
+            new_indices.as_mut_ptr(),
+            sources.as_mut_ptr(),
+            appended,
+        )
+    };
+    let (mut new_indices, mut sources, mut appended) = (
+        vec![UNTOUCHED; indices.len()],
+        vec![UNTOUCHED; indices.len()],
+        usize::MAX,
+    );
+    split(&mut new_indices.clone(), &mut sources.clone(), &mut 0);
+    let before = allocations();
+    let status = split(&mut new_indices.clone(), &mut sources.clone(), &mut 0);
+    let made = allocations() - before - 2;
+    assert_eq!(status, status::TBASIS_OK);
+    assert!(made > 0, "the split allocated nothing: nothing was tested");
+    for k in 0..made {
+        fail_allocation(Some(allocations() + k));
+        let status = split(&mut new_indices, &mut sources, &mut appended);
+        fail_allocation(None);
+        assert_eq!(
+            status,
+            status::TBASIS_ERROR_OUT_OF_MEMORY,
+            "allocation {k} of {made} failed"
+        );
+        assert!(
+            new_indices.iter().chain(&sources).all(|&x| x == UNTOUCHED) && appended == usize::MAX,
+            "allocation {k} of {made} failed, yet an output was written"
+        );
+    }
+}
