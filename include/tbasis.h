@@ -225,7 +225,10 @@ typedef struct tbasis_report {
 // A count is negative (`tbasis_calculate_tangent_array` takes `long`).
 #define TBASIS_ERROR_INVALID_COUNT 15
 
-// A bug in the library was caught at the boundary.
+// A bug in the library (a panic) was caught at the boundary. Unlike every other error, it may
+// come after writing began: the outputs (and the scratch) may hold any mix of their old bytes
+// and new values, element by element, and must not be used; only the transforms' `result` is
+// certainly unwritten. `*report` is left unchanged.
 #define TBASIS_ERROR_INTERNAL 16
 
 // `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
@@ -266,8 +269,9 @@ extern "C" {
 // Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
 // `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_UNKNOWN_METHOD`, `_UNKNOWN_POLICY`,
 // `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`, `_OUT_OF_MEMORY`,
-// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error no output byte
-// has been written.
+// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error but `_INTERNAL` no
+// output byte has been written (after `_INTERNAL`, a library bug, the outputs may be partly
+// written: see `TBASIS_ERROR_INTERNAL`).
 //
 // # Safety
 // Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -294,7 +298,8 @@ tbasis_status tbasis_generate(const struct tbasis_mesh *mesh,
 //   it must share no byte with an input or the scratch.
 // - `tangents_stride`: bytes from one corner's tangent to the next; at least 16.
 //
-// Returns the statuses of `tbasis_generate`; on any error no output byte has been written.
+// Returns the statuses of `tbasis_generate`; on any error but `_INTERNAL` no output byte has
+// been written.
 //
 // # Safety
 // Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -330,7 +335,8 @@ tbasis_status tbasis_generate_corners(const struct tbasis_mesh *mesh,
 // Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
 // `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY`,
 // `_TOO_MANY_VERTICES` (`vertex_count + *appended_count` would exceed 2^32, so the new indices
-// would not fit 32 bits) or `_INTERNAL`. On any error no output byte has been written.
+// would not fit 32 bits) or `_INTERNAL`. On any error but `_INTERNAL` no output byte has been
+// written.
 //
 // # Safety
 // Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -352,8 +358,8 @@ tbasis_status tbasis_split_corners(const struct tbasis_mesh *mesh,
 //   `vertex_count`, and `sources` outside the address range of `attribute`.
 //
 // Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
-// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error no byte has been
-// written.
+// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error but `_INTERNAL`
+// no byte has been written.
 //
 // # Safety
 // `attribute` must be writable and `sources` readable for the bytes documented above.
@@ -371,7 +377,8 @@ tbasis_status tbasis_copy_split_vertices(void *attribute,
 //
 // Returns `TBASIS_OK`; `TBASIS_ERROR_INVALID_COUNT` (a negative count),
 // `TBASIS_ERROR_NULL_POINTER`, `TBASIS_ERROR_INDEX_OUT_OF_RANGE`, `TBASIS_ERROR_SIZE_OVERFLOW`,
-// `TBASIS_ERROR_OVERLAP`, `TBASIS_ERROR_OUT_OF_MEMORY` or `TBASIS_ERROR_INTERNAL`.
+// `TBASIS_ERROR_OVERLAP`, `TBASIS_ERROR_OUT_OF_MEMORY` or `TBASIS_ERROR_INTERNAL` (after which
+// the outputs may be partly written).
 //
 // # Safety
 // The pointers must be valid for the sizes above.

@@ -16,6 +16,7 @@ use tbasis::{
 };
 
 use crate::codes::*;
+use crate::fault::inject_panic;
 use crate::status::*;
 
 /// The triangle mesh, read in place. Each attribute pointer addresses vertex 0; vertex `i` starts
@@ -155,18 +156,6 @@ fn boundary_value<T>(body: impl FnOnce() -> Result<T, Failure>) -> Result<T, Fai
     catch_unwind(AssertUnwindSafe(guarded)).unwrap_or(Err(Failure::Status(TBASIS_ERROR_INTERNAL)))
 }
 
-/// With the test-only feature `fault-injection`, panics when `TBASIS_INJECT_PANIC` is set, so that
-/// a C test can see every entry point turn a library bug into `TBASIS_ERROR_INTERNAL`.
-#[cfg(feature = "fault-injection")]
-fn inject_panic() {
-    if std::env::var_os("TBASIS_INJECT_PANIC").is_some() {
-        panic!("TBASIS_INJECT_PANIC is set");
-    }
-}
-
-#[cfg(not(feature = "fault-injection"))]
-fn inject_panic() {}
-
 /// Runs `body` and returns its status, a panic (a library bug) becoming `TBASIS_ERROR_INTERNAL`.
 fn boundary(body: impl FnOnce() -> Result<(), Failure>) -> tbasis_status {
     match boundary_value(body) {
@@ -302,8 +291,9 @@ fn options_of(options: Option<tbasis_options>) -> Result<Options, Failure> {
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
 /// `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_UNKNOWN_METHOD`, `_UNKNOWN_POLICY`,
 /// `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`, `_OUT_OF_MEMORY`,
-/// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error no output byte
-/// has been written.
+/// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error but `_INTERNAL` no
+/// output byte has been written (after `_INTERNAL`, a library bug, the outputs may be partly
+/// written: see `TBASIS_ERROR_INTERNAL`).
 ///
 /// # Safety
 /// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -429,7 +419,8 @@ unsafe fn caller_scratch<'a>(
 ///   it must share no byte with an input or the scratch.
 /// - `tangents_stride`: bytes from one corner's tangent to the next; at least 16.
 ///
-/// Returns the statuses of `tbasis_generate`; on any error no output byte has been written.
+/// Returns the statuses of `tbasis_generate`; on any error but `_INTERNAL` no output byte has
+/// been written.
 ///
 /// # Safety
 /// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -483,7 +474,8 @@ pub unsafe extern "C" fn tbasis_generate_corners(
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
 /// `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY`,
 /// `_TOO_MANY_VERTICES` (`vertex_count + *appended_count` would exceed 2^32, so the new indices
-/// would not fit 32 bits) or `_INTERNAL`. On any error no output byte has been written.
+/// would not fit 32 bits) or `_INTERNAL`. On any error but `_INTERNAL` no output byte has been
+/// written.
 ///
 /// # Safety
 /// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -547,8 +539,8 @@ pub unsafe extern "C" fn tbasis_split_corners(
 ///   `vertex_count`, and `sources` outside the address range of `attribute`.
 ///
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
-/// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error no byte has been
-/// written.
+/// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error but `_INTERNAL`
+/// no byte has been written.
 ///
 /// # Safety
 /// `attribute` must be writable and `sources` readable for the bytes documented above.
@@ -605,7 +597,8 @@ pub unsafe extern "C" fn tbasis_copy_split_vertices(
 ///
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_INVALID_COUNT` (a negative count),
 /// `TBASIS_ERROR_NULL_POINTER`, `TBASIS_ERROR_INDEX_OUT_OF_RANGE`, `TBASIS_ERROR_SIZE_OVERFLOW`,
-/// `TBASIS_ERROR_OVERLAP`, `TBASIS_ERROR_OUT_OF_MEMORY` or `TBASIS_ERROR_INTERNAL`.
+/// `TBASIS_ERROR_OVERLAP`, `TBASIS_ERROR_OUT_OF_MEMORY` or `TBASIS_ERROR_INTERNAL` (after which
+/// the outputs may be partly written).
 ///
 /// # Safety
 /// The pointers must be valid for the sizes above.

@@ -9,5 +9,6 @@
 compile_error!("the feature fault-injection is for test builds only, never a release build");
 
 mod codes;
+mod fault;
 mod ffi;
 mod status;

@@ -42,7 +42,10 @@ pub const TBASIS_ERROR_SCRATCH_TOO_SMALL: tbasis_status = 13;
 pub const TBASIS_ERROR_INVALID_THRESHOLD: tbasis_status = 14;
 /// A count is negative (`tbasis_calculate_tangent_array` takes `long`).
 pub const TBASIS_ERROR_INVALID_COUNT: tbasis_status = 15;
-/// A bug in the library was caught at the boundary.
+/// A bug in the library (a panic) was caught at the boundary. Unlike every other error, it may
+/// come after writing began: the outputs (and the scratch) may hold any mix of their old bytes
+/// and new values, element by element, and must not be used; only the transforms' `result` is
+/// certainly unwritten. `*report` is left unchanged.
 pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
 /// `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
 /// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result

@@ -1,12 +1,15 @@
 //! The C entry points with caller scratch (and one thread) make no heap allocation at all, counted
 //! on the calling thread like the Rust API's calls in `crates/tbasis/tests/allocation.rs`, which
-//! also proves the counter.
+//! also proves the counter; without caller scratch, each allocation a call makes may fail, and the
+//! call then returns `TBASIS_ERROR_OUT_OF_MEMORY` with its outputs untouched.
 
 // The C boundary's own source, compiled in to count what it allocates (the C library has no Rust
 // interface).
 #[allow(dead_code)]
 #[path = "../src/codes.rs"]
 mod codes;
+#[path = "../src/fault.rs"]
+mod fault;
 #[allow(dead_code, non_camel_case_types)]
 #[path = "../src/ffi.rs"]
 mod ffi;
@@ -14,8 +17,9 @@ mod ffi;
 #[path = "../src/status.rs"]
 mod status;
 
-use tbasis_test_support::alloc_count::{allocations, Counting};
-use tbasis_test_support::cases::{mirror_fold, quantized_uv_sphere, unit_quad};
+use tbasis_test_support::alloc_count::{allocations, fail_allocation, Counting};
+use tbasis_test_support::cases::{all_uvs_equal, mirror_fold, quantized_uv_sphere, sphere_poles, unit_quad, Case};
+use tbasis_test_support::shapes::Poles;
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -74,5 +78,205 @@ fn the_c_boundary_with_caller_scratch_allocates_nothing() {
             case.name
         );
         assert_eq!(made, 0, "{}: the C calls allocated", case.name);
+    }
+}
+
+/// Methods LENGYEL, ANGLE, AREA and UNIFORM under every policy (one thread, the library's own
+/// scratch), per vertex and per corner: each allocation a call makes may fail.
+#[test]
+fn each_allocation_of_a_per_vertex_method_may_fail_and_the_call_says_so() {
+    use codes::*;
+    let robust = [
+        TBASIS_DEGENERATE_SKIP,
+        TBASIS_DEGENERATE_INHERIT,
+        TBASIS_DEGENERATE_REJECT,
+    ];
+    let combinations: Vec<(u32, u32)> = [(TBASIS_METHOD_LENGYEL, TBASIS_DEGENERATE_LEGACY)]
+        .into_iter()
+        .chain(
+            [
+                TBASIS_METHOD_LENGYEL,
+                TBASIS_METHOD_ANGLE,
+                TBASIS_METHOD_AREA,
+                TBASIS_METHOD_UNIFORM,
+            ]
+            .into_iter()
+            .flat_map(|method| robust.map(|policy| (method, policy))),
+        )
+        .collect();
+    fail_each_allocation(&combinations, small_cases);
+    // Working memory of megabytes, which the library once took from a zeroed allocation that
+    // aborts when it fails: one combination is enough, the memory is the same for all.
+    fail_each_allocation(&[(TBASIS_METHOD_ANGLE, TBASIS_DEGENERATE_INHERIT)], || {
+        vec![quantized_uv_sphere()]
+    });
+}
+
+/// A mirror fold, collapsed UVs (INHERIT's adjacency), a sphere with degenerate pole triangles.
+fn small_cases() -> Vec<Case> {
+    vec![unit_quad(), mirror_fold(), all_uvs_equal(), sphere_poles(Poles::Shared)]
+}
+
+/// Method MIKKTSPACE under every policy, likewise.
+#[test]
+#[ignore = "MIKKTSPACE's pipeline still allocates infallibly (sub-groups in tspace.rs, spill lists in mod.rs)"]
+fn each_allocation_of_mikktspace_may_fail_and_the_call_says_so() {
+    use codes::*;
+    let policies = [
+        TBASIS_DEGENERATE_LEGACY,
+        TBASIS_DEGENERATE_SKIP,
+        TBASIS_DEGENERATE_INHERIT,
+        TBASIS_DEGENERATE_REJECT,
+    ];
+    fail_each_allocation(&policies.map(|policy| (TBASIS_METHOD_MIKKTSPACE, policy)), small_cases);
+}
+
+/// A C entry point writing into the given elements, returning its status.
+type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
+
+/// For each `(method, policy)`, on `cases`, per vertex and per corner: for each `k` up
+/// to the number of allocations a successful call makes, the call whose `k`-th allocation fails
+/// returns `TBASIS_ERROR_OUT_OF_MEMORY` and writes no output byte.
+fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Case>) {
+    use codes::*;
+    use std::ptr::null_mut;
+
+    const UNTOUCHED: f32 = -7.5;
+    let (mut failed, mut calls) = (0, 0);
+    for &(method, policy) in combinations {
+        for case in cases() {
+            let indices = case.indices.as_ref().unwrap();
+            let mesh = ffi::tbasis_mesh {
+                vertex_count: case.vertex_count(),
+                positions: case.positions.as_ptr().cast(),
+                positions_stride: 12,
+                normals: case.normals.as_ptr().cast(),
+                normals_stride: 12,
+                texcoords: case.texcoords.as_ref().unwrap().as_ptr().cast(),
+                texcoords_stride: 8,
+                indices: indices.as_ptr().cast(),
+                index_count: indices.len(),
+                index_type: TBASIS_INDEX_U32,
+            };
+            let options = ffi::tbasis_options {
+                method,
+                degenerate_policy: policy,
+                flags: 0,
+                threads: 1,
+                degenerate_threshold: 0.0,
+                scratch: null_mut(),
+                scratch_size: 0,
+            };
+            let per_vertex = |tangents: &mut [[f32; 4]]| {
+                let output = ffi::tbasis_output {
+                    tangents: tangents.as_mut_ptr().cast(),
+                    tangents_stride: 16,
+                    bitangents: null_mut(),
+                    bitangents_stride: 0,
+                };
+                unsafe { ffi::tbasis_generate(&mesh, &options, &output, null_mut()) }
+            };
+            let per_corner = |corners: &mut [[f32; 4]]| unsafe {
+                ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut())
+            };
+            let entries: [(&str, &Entry, usize); 2] = [
+                ("tbasis_generate", &per_vertex, case.vertex_count()),
+                ("tbasis_generate_corners", &per_corner, indices.len()),
+            ];
+            for (entry, call, count) in entries {
+                let what = format!("{entry}, method {method}, policy {policy}, {}", case.name);
+                let mut output = vec![[UNTOUCHED; 4]; count];
+                let mut written = output.clone();
+                // Counted on a second call: the first may make one-time allocations (the
+                // thread's own state) that later ones do not.
+                call(&mut written);
+                let before = allocations();
+                let status = call(&mut written);
+                let made = allocations() - before;
+                // REJECT refuses the degenerate cases, after allocating all the same.
+                assert!(
+                    status == status::TBASIS_OK || status == status::TBASIS_ERROR_DEGENERATE_UV,
+                    "{what}: status {status}"
+                );
+                for k in 0..made {
+                    fail_allocation(Some(allocations() + k));
+                    let status = call(&mut output);
+                    fail_allocation(None);
+                    assert_eq!(
+                        status,
+                        status::TBASIS_ERROR_OUT_OF_MEMORY,
+                        "{what}: allocation {k} of {made} failed"
+                    );
+                    assert!(
+                        output.iter().flatten().all(|&x| x == UNTOUCHED),
+                        "{what}: allocation {k} of {made} failed, yet the output was written"
+                    );
+                }
+                failed += made;
+                calls += 1;
+            }
+        }
+    }
+    eprintln!("{calls} calls, {failed} allocations failed one at a time");
+    assert!(failed > 0, "no call allocated: nothing was tested");
+}
+
+/// `tbasis_split_corners` on corners whose tangents differ at a mirror fold (it appends vertices):
+/// each of its allocations may fail, and then it writes nothing.
+#[test]
+fn each_allocation_of_a_seam_split_may_fail_and_the_call_says_so() {
+    use std::ptr::null_mut;
+
+    let case = mirror_fold();
+    let indices = case.indices.as_ref().unwrap();
+    let mesh = ffi::tbasis_mesh {
+        vertex_count: case.vertex_count(),
+        positions: case.positions.as_ptr().cast(),
+        positions_stride: 12,
+        normals: case.normals.as_ptr().cast(),
+        normals_stride: 12,
+        texcoords: null_mut(),
+        texcoords_stride: 0,
+        indices: indices.as_ptr().cast(),
+        index_count: indices.len(),
+        index_type: codes::TBASIS_INDEX_U32,
+    };
+    // Every corner a tangent of its own: every corner after a vertex's first is appended.
+    let corners: Vec<[f32; 4]> = (0..indices.len()).map(|c| [1.0, 0.0, 0.0, c as f32]).collect();
+    const UNTOUCHED: u32 = 0xdead;
+    let split = |new_indices: &mut [u32], sources: &mut [u32], appended: &mut usize| unsafe {
+        ffi::tbasis_split_corners(
+            &mesh,
+            corners.as_ptr().cast(),
+            16,
+            new_indices.as_mut_ptr(),
+            sources.as_mut_ptr(),
+            appended,
+        )
+    };
+    let (mut new_indices, mut sources, mut appended) = (
+        vec![UNTOUCHED; indices.len()],
+        vec![UNTOUCHED; indices.len()],
+        usize::MAX,
+    );
+    split(&mut new_indices.clone(), &mut sources.clone(), &mut 0);
+    let before = allocations();
+    let status = split(&mut new_indices.clone(), &mut sources.clone(), &mut 0);
+    let made = allocations() - before - 2;
+    assert_eq!(status, status::TBASIS_OK);
+    assert!(made > 0, "the split allocated nothing: nothing was tested");
+    for k in 0..made {
+        fail_allocation(Some(allocations() + k));
+        let status = split(&mut new_indices, &mut sources, &mut appended);
+        fail_allocation(None);
+        assert_eq!(
+            status,
+            status::TBASIS_ERROR_OUT_OF_MEMORY,
+            "allocation {k} of {made} failed"
+        );
+        assert!(
+            new_indices.iter().chain(&sources).all(|&x| x == UNTOUCHED) && appended == usize::MAX,
+            "allocation {k} of {made} failed, yet an output was written"
+        );
     }
 }

@@ -11,7 +11,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use common::artifacts::{profile_dir, release, soname};
+use common::artifacts::{build_library, profile_dir, release, soname};
 use common::tools::run_ok;
 use tbasis_test_support::needs;
 
@@ -373,4 +373,16 @@ fn installed_library_is_consumable_from_cpp() {
     }
     let (scratch, prefix) = installed("cpp");
     check_cpp(&prefix, &scratch.0);
+}
+
+/// README "Size": the shared library `cargo build --release` makes stays under 1 MB
+/// (docs/library-size.md: what each profile option saves).
+#[test]
+fn release_shared_library_is_under_one_megabyte() {
+    const LIMIT: u64 = 1_000_000;
+    let library = build_library(true).join("libtbasis.so");
+    let bytes = std::fs::metadata(&library)
+        .unwrap_or_else(|e| panic!("{}: {e}", library.display()))
+        .len();
+    assert!(bytes < LIMIT, "{}: {bytes} bytes, over {LIMIT}", library.display());
 }

@@ -50,14 +50,16 @@ fn python_package_builds_installs_and_passes_its_tests() {
     pip(&python, &["install", "--upgrade", "pip"]);
 
     // The wheel, built as `pip install ./bindings/python` builds it, into the target dir rather
-    // than the source tree.
+    // than the source tree, with the test-only feature `fault-injection` (maturin's PEP 517
+    // backend takes cargo arguments from MATURIN_PEP517_ARGS): the tests make the library panic.
     let wheels = fresh_dir(&work.join("wheels"));
     let mut build = Command::new(&python);
     build
         .args(["-m", "pip", "wheel", "--quiet", "--no-deps", "--wheel-dir"])
         .arg(&wheels)
         .arg(&package)
-        .env("CARGO_TARGET_DIR", work.join("target"));
+        .env("CARGO_TARGET_DIR", work.join("target"))
+        .env("MATURIN_PEP517_ARGS", "--features fault-injection");
     run_ok(clean(build), "pip wheel bindings/python");
     let wheel = only_file(&wheels, ".whl");
     let name = wheel.file_name().unwrap().to_string_lossy().into_owned();

@@ -6,6 +6,8 @@
 #[allow(dead_code)]
 #[path = "../src/codes.rs"]
 mod codes;
+#[path = "../src/fault.rs"]
+mod fault;
 #[allow(dead_code, non_camel_case_types)]
 #[path = "../src/ffi.rs"]
 mod ffi;

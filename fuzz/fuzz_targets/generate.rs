@@ -112,6 +112,10 @@ mod copy_split;
 #[rustfmt::skip]
 #[path = "../../src/ffi.rs"]
 mod ffi;
+#[allow(unexpected_cfgs)]
+#[rustfmt::skip]
+#[path = "../../src/fault.rs"]
+mod fault;
 #[allow(dead_code)]
 #[rustfmt::skip]
 #[path = "../../src/codes.rs"]

@@ -1,12 +1,15 @@
 //! The library's errors as one Python exception that the package translates.
 
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tbasis::{Error, Indices, Report};
 
-use crate::status::status_of;
+use crate::fault::inject_panic;
+use crate::status::{status_of, TBASIS_ERROR_INTERNAL};
 
 create_exception!(
     tbasis._native,
@@ -98,4 +101,20 @@ pub fn status_error(py: Python<'_>, status: u32, message: String, details: Detai
         Ok(()) => LibraryError::new_err((status, message, dict.unbind())),
         Err(failure) => failure,
     }
+}
+
+/// Runs `body` (a call into the library) with the GIL released, a panic, which would be a library
+/// bug, becoming [`LibraryError`] with `TBASIS_ERROR_INTERNAL` (the package raises
+/// `tbasis.InternalError`) rather than PyO3's `PanicException`, which is no `Exception`.
+pub fn guarded<T: Send>(py: Python<'_>, body: impl Send + FnOnce() -> T) -> PyResult<T> {
+    let outcome = py.detach(|| {
+        catch_unwind(AssertUnwindSafe(|| {
+            inject_panic();
+            body()
+        }))
+    });
+    outcome.map_err(|_| {
+        let message = "the library panicked: a bug, please report it".to_string();
+        status_error(py, TBASIS_ERROR_INTERNAL, message, Details::default())
+    })
 }

@@ -4,7 +4,7 @@ use pyo3::prelude::*;
 use tbasis::{Error, Options, Output, Report, DEFAULT_DEGENERATE_THRESHOLD};
 
 use crate::codes::{method_of, policy_of};
-use crate::errors::{library_error, report_tuple, status_error, Details, ReportTuple};
+use crate::errors::{guarded, library_error, report_tuple, status_error, Details, ReportTuple};
 use crate::status::{TBASIS_ERROR_UNKNOWN_METHOD, TBASIS_ERROR_UNKNOWN_POLICY};
 use crate::views::{rows, MeshPlaces};
 
@@ -32,7 +32,7 @@ pub fn generate(
     let tangents = rows::<4>("tangents", tangents, true)?;
     let bitangents = bitangents.map(|b| rows::<3>("bitangents", b, true)).transpose()?;
     let options = options(py, method, policy, threshold, flip_v, threads)?;
-    let result = py.detach(|| {
+    let result = guarded(py, || {
         // SAFETY: the arrays are arguments of this call, so they outlive it; the library checks
         // that no output byte is an input byte before it writes. A Python thread that writes the
         // same arrays while the GIL is released races with the library, as it would with numpy.
@@ -45,7 +45,7 @@ pub fn generate(
             (mesh.mesh(), output)
         };
         tbasis::generate(&mesh, &options, &mut output)
-    });
+    })?;
     finish(py, result, mesh)
 }
 
@@ -70,11 +70,11 @@ pub fn generate_corners(
     let mesh = MeshPlaces::new(positions, normals, texcoords, indices)?;
     let tangents = rows::<4>("tangents", tangents, true)?;
     let options = options(py, method, policy, threshold, flip_v, threads)?;
-    let result = py.detach(|| {
+    let result = guarded(py, || {
         // SAFETY: as in `generate`.
         let (mesh, mut tangents) = unsafe { (mesh.mesh(), tangents.write()) };
         tbasis::generate_corners(&mesh, &options, &mut tangents)
-    });
+    })?;
     finish(py, result, mesh)
 }
 

@@ -13,6 +13,8 @@
 #[path = "c_abi/codes.rs"]
 mod codes;
 mod errors;
+#[path = "../../../src/fault.rs"]
+mod fault;
 mod generate;
 mod split;
 #[allow(dead_code, non_camel_case_types)]

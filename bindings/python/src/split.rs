@@ -4,7 +4,7 @@ use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use tbasis::{Buffer, Error, Mesh, SeamSplit};
 
-use crate::errors::{library_error, Details};
+use crate::errors::{guarded, library_error, Details};
 use crate::views::{indices, rows, IndexPlace, Place};
 
 /// `(new_indices, sources)`.
@@ -21,7 +21,7 @@ pub fn split_corners<'py>(
 ) -> PyResult<Split<'py>> {
     let index_place = self::indices(indices)?;
     let corners = rows::<4>("corner_tangents", corner_tangents, false)?;
-    match py.detach(|| split(index_place, vertex_count, corners)) {
+    match guarded(py, || split(index_place, vertex_count, corners))? {
         Ok(split) => Ok((split.indices.into_pyarray(py), split.sources.into_pyarray(py))),
         Err(error) => {
             // SAFETY: the indices are still this call's argument.

@@ -4,7 +4,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use tbasis::Error;
 
-use crate::errors::{library_error, Details};
+use crate::errors::{guarded, library_error, Details};
 use crate::views::rows;
 
 /// Each row of `directions` (object space) in the tangent space of the same row of `normals` and
@@ -53,7 +53,7 @@ fn transform(
             "normals, tangents, directions and out must have as many rows",
         ));
     }
-    let result = py.detach(|| {
+    let result = guarded(py, || {
         // SAFETY: the arrays are arguments of this call, so they outlive it. Every result is
         // computed before `out` is written, so `out` may be an input (an in-place transform).
         let (normals, tangents, directions) = unsafe { (normals.read(), tangents.read(), directions.read()) };
@@ -71,7 +71,7 @@ fn transform(
             out.set(row, result);
         }
         Ok(())
-    });
+    })?;
     result.map_err(|(row, error)| {
         library_error(
             py,

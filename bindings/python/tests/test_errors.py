@@ -260,6 +260,62 @@ def test_out_overlapping_an_input_is_refused(mesh: Mesh) -> None:
     )
 
 
+@pytest.mark.parametrize(
+    "layout",
+    ["big-endian", "every other column"],
+)
+def test_out_the_library_cannot_write_in_place_is_refused_when_it_overlaps_an_input(mesh: Mesh, layout: str) -> None:
+    # These outs are written through a copy, which shares nothing with the inputs: only the
+    # caller's arrays show the overlap, and the copy back would overwrite the input.
+    block = np.zeros((mesh.count, 8), dtype=np.float32)
+    block[:, :3], block[:, 3:6] = mesh.positions, mesh.normals
+    before = block.copy()
+    if layout == "big-endian":
+        out, other = block.view(">f4")[:, 4:8], "normals"
+    else:
+        out, other = block[:, ::2], "positions"
+    for call in (tbasis.generate, tbasis.generate_corners):
+        error = raises(
+            tbasis.OverlapError,
+            f"the tangents output shares bytes with the {other} buffer",
+            lambda: call(block[:, :3], block[:, 3:6], mesh.uvs, None, out=out),
+        )
+        assert error.status == 10
+        assert np.array_equal(block, before)
+    # Bitangents written through a copy, tangents in place over two of their columns.
+    shared = np.zeros((mesh.count, 6), dtype=np.float32)
+    raises(
+        tbasis.OverlapError,
+        "the tangents output shares bytes with the bitangents buffer",
+        lambda: tbasis.generate(
+            mesh.positions, mesh.normals, mesh.uvs, mesh.indices, out=shared[:, 2:6], bitangents=shared[:, ::2]
+        ),
+    )
+    assert not shared.any()
+
+
+def test_a_panic_in_the_library_raises_internal_error(mesh: Mesh, monkeypatch: pytest.MonkeyPatch) -> None:
+    # The wheel tests/python.rs builds has the test-only feature fault-injection: with
+    # TBASIS_INJECT_PANIC set, every call into the library panics there.
+    corners = tbasis.generate_corners(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method="mikktspace")
+    out = np.zeros((mesh.count, 4), dtype=np.float32)
+    corner_out = np.zeros((len(mesh.indices), 4), dtype=np.float32)
+    directions = np.zeros((mesh.count, 3), dtype=np.float32)
+    frames = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices)
+    monkeypatch.setenv("TBASIS_INJECT_PANIC", "1")
+    calls: list[Callable[[], Any]] = [
+        lambda: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, out=out),
+        lambda: tbasis.generate_corners(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, out=corner_out),
+        lambda: tbasis.split_corners(mesh.indices, mesh.count, corners),
+        lambda: tbasis.to_tangent_space(mesh.normals, frames, mesh.normals, out=directions),
+        lambda: tbasis.from_tangent_space(mesh.normals, frames, mesh.normals, out=directions),
+    ]
+    for call in calls:
+        error = raises(tbasis.InternalError, "the library panicked", call)
+        assert error.status == 16
+    assert not out.any() and not corner_out.any() and not directions.any()
+
+
 def test_split_errors(mesh: Mesh) -> None:
     corners = tbasis.generate_corners(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, method="mikktspace")
     bad = mesh.indices.copy()

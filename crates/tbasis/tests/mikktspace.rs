@@ -23,7 +23,7 @@
 //!
 //! Runtime of a debug build: about 60 s of CPU, half of it the corpus (mikktspace.c costs 9-17 us
 //! per vertex there, this library's debug build about as much; `--release` is 4x faster), so about
-//! 35 s on two idle cores. Debug builds skip corpus meshes above [`DEBUG_MAX_VERTICES`] (only
+//! 35 s on two idle cores. Debug builds skip corpus meshes above [`load::DEBUG_MAX_VERTICES`] (only
 //! `FlightHelmet.cc1.glb`, 849k vertices) and say so; `cargo test --release -p tbasis --test mikktspace`
 //! checks them too. Without the corpus the corpus tests are skipped, except under CI (`CI` set),
 //! where they fail (`tbasis_test_support::needs`).
@@ -42,10 +42,6 @@ use tbasis_test_support::mikktspace_reference::reference_corners;
 use tbasis_test_support::mikktspace_scenes::{self, IndexData, StressMesh};
 use tbasis_test_support::needs;
 use tbasis_test_support::run::{generate_corners_into, generate_into, UNTOUCHED};
-
-/// Corpus meshes above this many vertices are skipped in debug builds (the reference alone would
-/// take 30 s on FlightHelmet.cc1).
-const DEBUG_MAX_VERTICES: usize = 200_000;
 
 /// Mismatching corners shown per mesh and run; the rest are counted.
 const SHOWN: usize = 4;
@@ -467,11 +463,7 @@ fn check_corpus() -> CorpusOutcome {
             scope.spawn(|| {
                 while let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
                     let row = &rows[k];
-                    if cfg!(debug_assertions) && row.vertices > DEBUG_MAX_VERTICES {
-                        eprintln!(
-                            "skipped in debug builds: {} ({} vertices); --release checks it",
-                            row.path, row.vertices
-                        );
+                    if load::left_to_optimized_builds(row) {
                         continue;
                     }
                     let found = match load::load(&dir, row) {

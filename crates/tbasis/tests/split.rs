@@ -194,9 +194,7 @@ fn every_corpus_mesh_splits_its_mikktspace_seams() {
     let (mut primitives, mut appended, mut split_vertices) = (0, 0, 0);
     let mut failures = Vec::new();
     for row in &rows {
-        // The debug build takes minutes on the largest asset; the release bench covers it.
-        if cfg!(debug_assertions) && row.vertices > 300_000 {
-            eprintln!("{}: {} vertices, skipped in a debug build", row.path, row.vertices);
+        if load::left_to_optimized_builds(row) {
             continue;
         }
         let file = load::load(&dir, row).unwrap_or_else(|e| panic!("{}: {e}", row.path));

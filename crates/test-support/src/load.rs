@@ -111,6 +111,22 @@ pub fn corpus_dir() -> Option<PathBuf> {
     dir.join("MANIFEST.tsv").is_file().then_some(dir)
 }
 
+/// Corpus files above this many vertices are checked by optimized builds only (`cargo test
+/// --release`, which CI runs): a debug build takes minutes on `FlightHelmet.cc1.glb` (849k).
+pub const DEBUG_MAX_VERTICES: usize = 200_000;
+
+/// True, after saying so on stderr, when `row` is above [`DEBUG_MAX_VERTICES`] in a debug build.
+pub fn left_to_optimized_builds(row: &ManifestRow) -> bool {
+    let skip = cfg!(debug_assertions) && row.vertices > DEBUG_MAX_VERTICES;
+    if skip {
+        eprintln!(
+            "skipped in debug builds: {} ({} vertices); --release checks it",
+            row.path, row.vertices
+        );
+    }
+    skip
+}
+
 /// Every row of `dir/MANIFEST.tsv`, in file order. Columns are found by their header name.
 pub fn read_manifest(dir: &Path) -> Result<Vec<ManifestRow>, String> {
     let path = dir.join("MANIFEST.tsv");

@@ -14,10 +14,12 @@ from typing import Any, Optional
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._errors import InvalidDtypeError, InvalidLayoutError, out_of_range
+from ._errors import InvalidDtypeError, InvalidLayoutError, OverlapError, out_of_range
 
 _FLOAT32 = np.dtype(np.float32)
 _INDEX_TYPES = (np.dtype(np.uint16), np.dtype(np.uint32))
+# TBASIS_ERROR_OVERLAP, the status the library gives the same refusal.
+_OVERLAP = 10
 
 
 def rows(name: str, array: ArrayLike, width: int) -> NDArray[np.float32]:
@@ -69,6 +71,22 @@ def output(
     if in_place and flat.dtype == _FLOAT32 and _rows_in_place(flat, width):
         return flat, None
     return np.empty((count, width), dtype=np.float32), out
+
+
+def refuse_overlap(outputs: dict[str, Any], inputs: dict[str, Any]) -> None:
+    """``OverlapError`` when an output array shares a byte with an input or with another output.
+
+    Judged on the caller's arrays, before any conversion: where the library cannot write ``out``
+    in place it writes a copy, which shares nothing, and the result copied back would overwrite
+    an input. ``None`` and arrays numpy creates from other objects share nothing.
+    """
+    given = [(name, array) for name, array in outputs.items() if isinstance(array, np.ndarray)]
+    read = [(name, array) for name, array in inputs.items() if isinstance(array, np.ndarray)]
+    for k, (written, out) in enumerate(given):
+        for other, array in read + given[k + 1 :]:
+            # The bounds test first: exact answers on interleaved views cost more.
+            if np.may_share_memory(out, array) and np.shares_memory(out, array):
+                raise OverlapError(f"the {written} output shares bytes with the {other} buffer", _OVERLAP)
 
 
 def deliver(written: NDArray[np.float32], pending: Optional[NDArray[Any]], out: Optional[NDArray[Any]]) -> NDArray[Any]:

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _native
 from ._arrays import indices as index_array
-from ._arrays import deliver, output, rows
+from ._arrays import deliver, output, refuse_overlap, rows
 from ._errors import InvalidDtypeError, InvalidLayoutError, from_library
 from ._options import Method, MethodName, Policy, PolicyName, method_code, policy_code, threads_value, threshold_value
 
@@ -70,6 +70,11 @@ def _mesh(
     flat, _ = index_array(indices, count)
     corners = count if flat is None else flat.size
     return _Mesh(checked_positions, checked_normals, checked_texcoords, flat, count, corners)
+
+
+def _inputs(positions: Any, normals: Any, texcoords: Any, indices: Any) -> dict[str, Any]:
+    """The caller's input arrays by the library's names for them."""
+    return {"positions": positions, "normals": normals, "texcoords": texcoords, "indices": indices}
 
 
 class _Options(NamedTuple):
@@ -215,10 +220,11 @@ def generate(
     """
     mesh = _mesh(positions, normals, texcoords, indices)
     options = _options(method, policy, threshold, flip_v, threads)
-    tangents, pending = output("out", out, (mesh.vertex_count, 4))
     bitangents_out = bitangents if isinstance(bitangents, np.ndarray) else None
     if bitangents_out is None and not isinstance(bitangents, (bool, np.bool_)):
         raise InvalidDtypeError(f"bitangents must be True, False or a float32 array, not {type(bitangents).__name__}")
+    refuse_overlap({"tangents": out, "bitangents": bitangents_out}, _inputs(positions, normals, texcoords, indices))
+    tangents, pending = output("out", out, (mesh.vertex_count, 4))
     wanted = bitangents_out is not None or bool(bitangents)
     written, pending_bitangents = (
         output("bitangents", bitangents_out, (mesh.vertex_count, 3)) if wanted else (None, None)
@@ -312,6 +318,7 @@ def generate_corners(
     """
     mesh = _mesh(positions, normals, texcoords, indices)
     options = _options(method, policy, threshold, flip_v, threads)
+    refuse_overlap({"tangents": out}, _inputs(positions, normals, texcoords, indices))
     tangents, pending = output("out", out, (mesh.corner_count, 4))
     try:
         counts = _native.generate_corners(

@@ -116,21 +116,14 @@ pub(crate) enum Place {
     Heap,
 }
 
-/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]. A large buffer comes from the
-/// system already cleared, after a fallible reservation tells whether the memory is there, so it
-/// costs only the pages a call then touches; a small one is cleared here, in one allocation.
+/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]. Reserved fallibly, then cleared
+/// here: a zeroed allocation from the system (`vec![0; len]`) would cost fewer page writes, but
+/// aborts the process when the memory is not there, which the C boundary must never do.
 pub(crate) fn zeroed_bytes(len: usize) -> Result<Vec<u8>, Error> {
-    /// Below this, clearing costs less than a second allocation (and the allocator would clear
-    /// its recycled memory anyway).
-    const CLEARED_BY_THE_SYSTEM: usize = 128 * 1024;
     let mut bytes: Vec<u8> = Vec::new();
     bytes.try_reserve_exact(len).map_err(|_| Error::OutOfMemory)?;
-    if len < CLEARED_BY_THE_SYSTEM {
-        bytes.resize(len, 0);
-        return Ok(bytes);
-    }
-    drop(bytes);
-    Ok(vec![0; len])
+    bytes.resize(len, 0);
+    Ok(bytes)
 }
 
 /// Runs `job` on the working memory of one call: the first `size(Place::Caller)` bytes of the

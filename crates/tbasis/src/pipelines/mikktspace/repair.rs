@@ -1,27 +1,83 @@
 //! What the policies other than LEGACY change in mikktspace.c's result: SKIP, INHERIT and REJECT
-//! (whose refusal of degenerate triangles comes before this pipeline runs) replace only the
-//! corners where mikktspace.c writes no usable frame.
+//! (whose refusal of degenerate triangles comes before this pipeline runs) make the smallest change
+//! that turns each corner's tangent into a valid frame.
 #![forbid(unsafe_code)]
 
 use glam::Vec3 as GlamVec3;
 
 use super::NONE;
 use crate::kernel::frame::{
-    fallback_tangent, is_unit_and_perpendicular, VertexNormal, FRAME_TOLERANCE, NO_NORMAL_TANGENT,
+    fallback_tangent, is_unit_length, length_and_direction, orthonormalize, FRAME_TOLERANCE, NO_NORMAL_TANGENT,
 };
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::DegeneratePolicy;
 use crate::kernel::report::Report;
 use crate::kernel::vector::Vec3;
 
-/// True when `tangent` is a unit tangent perpendicular to `normal`.
-fn usable(tangent: Vec3, normal: Option<GlamVec3>) -> bool {
-    is_unit_and_perpendicular(GlamVec3::from_array(tangent), normal, FRAME_TOLERANCE)
+/// A unit tangent whose component off the normal is below this is along the normal: what is left
+/// is rounding, not a direction.
+const MIN_IN_PLANE: f32 = 1e-3;
+
+/// How far off the unit normal's plane a tangent mikktspace.c wrote may be and still be kept bit
+/// for bit (at most 1e-4 radians, 0.006 degrees, from the plane). mikktspace.c removes the normal
+/// from each corner's term, then normalizes the group's sum, where terms that nearly cancel magnify
+/// the off-plane rounding (up to 6.7e-5 on the corpus's unit normals).
+const KEPT_OFF_PLANE: f32 = 1e-4;
+
+/// A caller's normal as the repair reads it.
+#[derive(Clone, Copy)]
+struct Normal {
+    /// Unit length; `None` when the normal is zero or not finite.
+    unit: Option<GlamVec3>,
+    /// `|1 - |n|^2|` for a normal unit length within 1e-3 (else 0): mikktspace.c removes the normal
+    /// as the caller gave it, so its tangent is off the unit normal's plane by up to this much
+    /// more, the normal's error, not the tangent's (0.99996-long normals leave tangents 1.1e-5 off).
+    slack: f32,
 }
 
-/// Replaces every corner tangent that is not [`usable`]: under INHERIT by the first usable
-/// tangent among the corners of the same vertex, else (and under SKIP and REJECT) by the fallback
-/// tangent built from the normal. The sign is kept. `first_usable` holds a word per vertex.
+impl Normal {
+    fn of_vertex(mesh: &Mesh, v: usize) -> Self {
+        match length_and_direction(GlamVec3::from_array(mesh.normals.get(v))) {
+            Some((length, unit)) => Normal {
+                unit: Some(unit),
+                slack: if is_unit_length(length) {
+                    (1.0 - length * length).abs()
+                } else {
+                    0.0
+                },
+            },
+            None => Normal { unit: None, slack: 0.0 },
+        }
+    }
+}
+
+/// True when mikktspace.c's `tangent` is kept bit for bit: finite, unit length within
+/// [`FRAME_TOLERANCE`], and off the unit normal's plane by at most [`KEPT_OFF_PLANE`] plus the
+/// normal's own error.
+fn is_kept(tangent: Vec3, normal: Normal) -> bool {
+    let t = GlamVec3::from_array(tangent);
+    let unit = t.is_finite() && (t.length() - 1.0).abs() <= FRAME_TOLERANCE;
+    unit && normal
+        .unit
+        .is_none_or(|n| n.dot(t).abs() <= KEPT_OFF_PLANE + normal.slack)
+}
+
+/// The unit tangent nearest to `tangent` in the normal's plane: the normal removed, normalized.
+/// `None` when `tangent` is zero, not finite, or (all but) along the normal.
+fn nearest_valid(tangent: Vec3, normal: Normal) -> Option<Vec3> {
+    let (_, direction) = length_and_direction(GlamVec3::from_array(tangent))?;
+    match orthonormalize(direction, normal.unit)? {
+        (in_plane, unit) if in_plane > MIN_IN_PLANE => Some(unit.to_array()),
+        _ => None,
+    }
+}
+
+/// Makes every corner tangent valid with the smallest change, the sign kept: a tangent
+/// [`is_kept`] stays as it is; one with a direction off the normal's plane is moved into it and
+/// normalized; one without (zero, not finite, along the normal) takes, under INHERIT, the tangent
+/// of the first corner of the same vertex that has one, else (and under SKIP and REJECT) the
+/// fallback tangent built from the normal. `report.repaired_corners` counts the corners changed.
+/// `first_usable` holds a word per vertex.
 pub(crate) fn repair(
     mesh: &Mesh,
     policy: DegeneratePolicy,
@@ -29,26 +85,38 @@ pub(crate) fn repair(
     first_usable: &mut [u32],
     report: &mut Report,
 ) {
-    let normal = |v: usize| VertexNormal::new(mesh.normals.get(v)).unit;
     first_usable.fill(NONE);
-    if policy == DegeneratePolicy::Inherit {
-        for (c, &tangent) in tangents.iter().enumerate() {
-            let v = mesh.indices.corner(c);
-            if first_usable[v] == NONE && usable(tangent, normal(v)) {
-                first_usable[v] = c as u32;
+    let mut without_direction = 0usize;
+    for (c, tangent) in tangents.iter_mut().enumerate() {
+        let v = mesh.indices.corner(c);
+        let normal = Normal::of_vertex(mesh, v);
+        if !is_kept(*tangent, normal) {
+            report.repaired_corners += 1;
+            match nearest_valid(*tangent, normal) {
+                Some(moved) => *tangent = moved,
+                None => {
+                    without_direction += 1;
+                    continue;
+                }
             }
         }
+        if first_usable[v] == NONE {
+            first_usable[v] = c as u32;
+        }
     }
+    if without_direction == 0 {
+        return;
+    }
+    // Every corner still not kept has no direction of its own.
     for c in 0..tangents.len() {
         let v = mesh.indices.corner(c);
-        let n = normal(v);
-        if usable(tangents[c], n) {
+        let normal = Normal::of_vertex(mesh, v);
+        if is_kept(tangents[c], normal) {
             continue;
         }
-        report.repaired_corners += 1;
         tangents[c] = match first_usable[v] {
-            NONE => n.map_or(NO_NORMAL_TANGENT, fallback_tangent).to_array(),
-            donor => tangents[donor as usize],
+            donor if donor != NONE && policy == DegeneratePolicy::Inherit => tangents[donor as usize],
+            _ => normal.unit.map_or(NO_NORMAL_TANGENT, fallback_tangent).to_array(),
         };
     }
 }
