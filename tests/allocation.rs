@@ -119,7 +119,6 @@ fn small_cases() -> Vec<Case> {
 
 /// Method MIKKTSPACE under every policy, likewise.
 #[test]
-#[ignore = "MIKKTSPACE's pipeline still allocates infallibly (sub-groups in tspace.rs, spill lists in mod.rs)"]
 fn each_allocation_of_mikktspace_may_fail_and_the_call_says_so() {
     use codes::*;
     let policies = [
