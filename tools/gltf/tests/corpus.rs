@@ -350,21 +350,25 @@ fn outputs_pass_the_validator_with_no_issue_the_input_lacked() {
     needs::GLTF_VALIDATOR.require();
     let mut failures = Vec::new();
     for (input, output) in &converted().files {
-        let before = validator::codes(&validator::issues(input));
-        let after = validator::issues(output);
-        let new: Vec<String> = after
-            .iter()
-            .filter(|issue| !before.contains(&issue.code))
-            .map(|issue| {
-                format!(
-                    "{} {} at {}: {}",
-                    issue.code, issue.severity, issue.pointer, issue.message
-                )
-            })
-            .collect();
+        let new = validator::new_issues(&validator::issues(input), &validator::issues(output));
         if !new.is_empty() {
             failures.push(format!("{}:\n  {}", output.display(), new.join("\n  ")));
         }
     }
     assert!(failures.is_empty(), "new validator issues:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn a_second_issue_of_a_code_the_input_had_is_new() {
+    let issue = |code: &str, pointer: &str| validator::Issue {
+        code: code.into(),
+        severity: 0,
+        pointer: pointer.into(),
+        message: String::new(),
+    };
+    let before = [issue("IO_ERROR", "/buffers/0")];
+    let after = [issue("IO_ERROR", "/buffers/0"), issue("IO_ERROR", "/buffers/1")];
+    assert_eq!(validator::new_issues(&before, &before), Vec::<String>::new());
+    assert_eq!(validator::new_issues(&before, &after).len(), 2);
+    assert_eq!(validator::new_issues(&[], &before).len(), 1);
 }

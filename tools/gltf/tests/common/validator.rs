@@ -1,6 +1,6 @@
 //! The Khronos glTF Validator (npm `gltf-validator`), through `tests/validate.js`.
 
-use std::collections::BTreeSet;
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
@@ -46,7 +46,26 @@ pub fn issues(file: &Path) -> Vec<Issue> {
         .collect()
 }
 
-/// The codes among `issues`.
-pub fn codes(issues: &[Issue]) -> BTreeSet<String> {
-    issues.iter().map(|i| i.code.clone()).collect()
+/// The issues of `after` beyond those of `before`, code by code: where `after` has more issues
+/// of a code than `before`, all of that code, described. Counted, not a set of codes: a file
+/// that already had one IO_ERROR must not hide a second.
+pub fn new_issues(before: &[Issue], after: &[Issue]) -> Vec<String> {
+    let counts = |issues: &[Issue]| {
+        let mut counts = BTreeMap::new();
+        for issue in issues {
+            *counts.entry(issue.code.clone()).or_insert(0usize) += 1;
+        }
+        counts
+    };
+    let (had, has) = (counts(before), counts(after));
+    after
+        .iter()
+        .filter(|issue| has[&issue.code] > had.get(&issue.code).copied().unwrap_or(0))
+        .map(|issue| {
+            format!(
+                "{} {} at {}: {}",
+                issue.code, issue.severity, issue.pointer, issue.message
+            )
+        })
+        .collect()
 }
