@@ -35,6 +35,11 @@ pub struct Args {
     #[arg(long)]
     pub overwrite: bool,
 
+    /// Read buffers and images that lie outside the input's folder (absolute paths, `..`, links
+    /// leading out, URI schemes other than data:), which are refused otherwise.
+    #[arg(long)]
+    pub allow_outside_uris: bool,
+
     /// How tangents are computed.
     #[arg(long, value_enum, default_value_t = MethodArg::Mikktspace)]
     pub method: MethodArg,

@@ -22,6 +22,8 @@ use crate::uri;
 pub struct Settings {
     pub options: Options,
     pub overwrite: bool,
+    /// Read buffers and images outside the input's folder ([`crate::uri::outside`]).
+    pub allow_outside_uris: bool,
     /// Threads for the primitives of one file.
     pub threads: usize,
 }
@@ -42,7 +44,25 @@ pub struct Outcome {
 /// Converts `job.input` into `job.output`; on error nothing has been written.
 pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     let start = Instant::now();
-    let mut asset = io::read(&job.input)?;
+    let asset = io::read(&job.input, settings.allow_outside_uris)?;
+    let mut outcome = convert_asset(asset, &job.output, settings, |files| {
+        io::write_files(files, &job.input)
+    })?;
+    outcome.elapsed = start.elapsed();
+    Ok(outcome)
+}
+
+/// The files of an output: each path with its bytes in pieces, written one after the other; the
+/// main file last.
+pub type Files<'a> = [(PathBuf, Vec<&'a [u8]>)];
+
+/// Adds tangents to `asset` and hands what `output` consists of to `write`.
+pub fn convert_asset(
+    mut asset: Asset,
+    output: &Path,
+    settings: &Settings,
+    write: impl FnOnce(&Files) -> Result<(), String>,
+) -> Result<Outcome, String> {
     let mut outcome = Outcome::default();
 
     // Plan every primitive; identical ones are computed once and share the result.
@@ -73,8 +93,8 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     if !computed.is_empty() {
         grown = append(&mut asset, &sources, &users, &computed, &mut outcome)?;
     }
-    let side_file = finish_buffers(&mut asset, original_buffers, &job.output)?;
-    rebase_uris(&mut asset, original_buffers, &job.output)?;
+    let side_file = finish_buffers(&mut asset, original_buffers, output)?;
+    rebase_uris(&mut asset, original_buffers, output)?;
     let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
     if let Some(path) = side_file {
         let added = asset.buffers.last().and_then(Option::as_deref).unwrap_or_default();
@@ -96,9 +116,8 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
             vec![document.as_slice()]
         }
     };
-    files.push((job.output.clone(), main));
-    io::write_files(&files, &job.input)?;
-    outcome.elapsed = start.elapsed();
+    files.push((output.to_path_buf(), main));
+    write(&files)?;
     Ok(outcome)
 }
 
@@ -253,7 +272,8 @@ fn side_file_name(asset: &Asset, output: &Path) -> Result<String, String> {
         .ok_or_else(|| format!("{}: the output name is not valid UTF-8", output.display()))?;
     let out_dir = canonical_dir(output)?;
     let in_dir = std::fs::canonicalize(&asset.dir).map_err(|e| format!("{}: {e}", asset.dir.display()))?;
-    let used: Vec<PathBuf> = uris(&asset.json)
+    let used: Vec<PathBuf> = uri::document_uris(&asset.json)
+        .map(|(_, _, u)| u)
         .filter(|u| uri::is_relative_file(u))
         .map(|u| uri::resolve(&in_dir, u))
         .collect();
@@ -264,14 +284,6 @@ fn side_file_name(asset: &Asset, output: &Path) -> Result<String, String> {
         })
         .find(|name| !used.contains(&out_dir.join(name)))
         .ok_or_else(|| "no free name for the new buffer".to_string())
-}
-
-/// Every buffer and image URI of the document.
-fn uris(json: &Value) -> impl Iterator<Item = &str> {
-    ["buffers", "images"]
-        .into_iter()
-        .flat_map(move |key| json[key].as_array().into_iter().flatten())
-        .filter_map(|item| item["uri"].as_str())
 }
 
 /// A document written to another folder must still find its files: relative URIs are rewritten

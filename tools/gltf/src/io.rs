@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use crate::{buffers, document};
+use crate::{buffers, document, uri};
 
 /// Required extensions whose data the tool cannot decode: compressed geometry.
 const UNDECODABLE: [(&str, &str); 3] = [
@@ -34,9 +34,20 @@ pub struct Asset {
     pub dir: PathBuf,
 }
 
-/// Reads and checks `path`; the error says what is wrong (the caller names the file).
-pub fn read(path: &Path) -> Result<Asset, String> {
-    let mut bytes = fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+/// Reads and checks `path`; the error says what is wrong (the caller names the file). Buffers
+/// and images must stay in the file's folder unless `allow_outside_uris` ([`uri::outside`]).
+pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
+    let bytes = fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+    let dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    parse(bytes, dir, allow_outside_uris)
+}
+
+/// Reads and checks the bytes of a .gltf or .glb (told apart by GLB's magic) whose relative URIs
+/// resolve against `dir`.
+pub fn parse(mut bytes: Vec<u8>, dir: PathBuf, allow_outside_uris: bool) -> Result<Asset, String> {
     let (kind, json, bin) = if bytes.starts_with(b"glTF") {
         let (json_range, bin_range) = glb_chunks(&bytes).map_err(|e| format!("not a valid GLB file: {e}"))?;
         let json = parse_json(&bytes[json_range])?;
@@ -52,10 +63,9 @@ pub fn read(path: &Path) -> Result<Asset, String> {
     };
     check_required_extensions(&json)?;
     document::check(&json)?;
-    let dir = match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    if !allow_outside_uris {
+        check_uris_stay_inside(&json, &dir)?;
+    }
     let buffers = buffers::load(&json, bin, &dir)?;
     Ok(Asset {
         kind,
@@ -63,6 +73,20 @@ pub fn read(path: &Path) -> Result<Asset, String> {
         buffers,
         dir,
     })
+}
+
+/// Refuses a buffer or image URI that leads out of `dir`: a tool run on uploaded files must not
+/// copy other files of its machine into its output, nor point the output at them.
+fn check_uris_stay_inside(json: &Value, dir: &Path) -> Result<(), String> {
+    for (list, index, text) in uri::document_uris(json) {
+        if let Some(why) = uri::outside(dir, text) {
+            return Err(format!(
+                "{list} {index}: its uri {text:?} {why}, outside the file's folder; \
+                 --allow-outside-uris reads it all the same"
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn parse_json(bytes: &[u8]) -> Result<Value, String> {

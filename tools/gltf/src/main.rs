@@ -3,20 +3,10 @@
 //! Exit status: 0 when every file was written, 1 when any file failed (each failure is reported
 //! on stderr and leaves no output), 2 for a bad command line.
 
-mod accessor;
-mod args;
-mod batch;
-mod buffers;
-mod convert;
-mod document;
-mod io;
-mod primitive;
-mod select;
-mod uri;
-
 use std::process::ExitCode;
 
 use clap::Parser;
+use tbasis_gltf::{args, batch, convert};
 
 fn main() -> ExitCode {
     let args = args::Args::parse();
@@ -42,6 +32,7 @@ fn main() -> ExitCode {
     let settings = convert::Settings {
         options: args.options(),
         overwrite: args.overwrite,
+        allow_outside_uris: args.allow_outside_uris,
         // Cores the file workers leave idle go to the primitives of each file.
         threads: (cores / workers).max(1),
     };
