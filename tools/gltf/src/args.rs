@@ -35,6 +35,11 @@ pub struct Args {
     #[arg(long)]
     pub overwrite: bool,
 
+    /// Replace an existing OUT.tangents.bin beside an output, which is refused otherwise: it may
+    /// hold another file's data.
+    #[arg(long)]
+    pub force: bool,
+
     /// Read buffers and images that lie outside the input's folder (absolute paths, `..`, links
     /// leading out, URI schemes other than data:), which are refused otherwise.
     #[arg(long)]

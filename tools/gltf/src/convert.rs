@@ -24,6 +24,8 @@ pub struct Settings {
     pub overwrite: bool,
     /// Read buffers and images outside the input's folder ([`crate::uri::outside`]).
     pub allow_outside_uris: bool,
+    /// Replace an existing side buffer (`OUT.tangents.bin`) that this run did not write.
+    pub replace_side_files: bool,
     /// Threads for the primitives of one file.
     pub threads: usize,
 }
@@ -44,9 +46,10 @@ pub struct Outcome {
 /// Converts `job.input` into `job.output`; on error nothing has been written.
 pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     let start = Instant::now();
+    io::refuse_to_replace_input(&job.input, &job.output)?;
     let asset = io::read(&job.input, settings.allow_outside_uris)?;
     let mut outcome = convert_asset(asset, &job.output, settings, |files| {
-        io::write_files(files, &job.input)
+        io::write_files(files, &job.input, settings.replace_side_files)
     })?;
     outcome.elapsed = start.elapsed();
     Ok(outcome)

@@ -33,6 +33,7 @@ fn main() -> ExitCode {
         options: args.options(),
         overwrite: args.overwrite,
         allow_outside_uris: args.allow_outside_uris,
+        replace_side_files: args.force,
         // Cores the file workers leave idle go to the primitives of each file.
         threads: (cores / workers).max(1),
     };
