@@ -248,3 +248,35 @@ fn an_image_outside_the_folder_is_refused() {
         "image 0: its uri \"textures/../../n.png\" climbs out with ..",
     );
 }
+
+#[test]
+fn an_accessor_offset_that_wraps_around() {
+    let (input, output) = folders("offset-wraps");
+    let mut fixture = Fixture::mirrored_quad();
+    // Offset + the last element's end passes 2^64: unchecked, it would wrap past the bounds check.
+    fixture.json["accessors"][1]["byteOffset"] = json!(u64::MAX - 15);
+    let file = fixture.write_glb(&input, "wraps");
+    refused(&file, &output, "accessor 1: too large");
+}
+
+#[test]
+fn a_huge_accessor_without_data() {
+    let (input, output) = folders("zeros");
+    let mut fixture = Fixture::mirrored_quad();
+    // A few bytes of JSON ask for 2 TB of zeros: the indices, sparse, need no bufferView.
+    let indices = fixture.primitive(0)["indices"].as_u64().unwrap() as usize;
+    let accessor = &mut fixture.json["accessors"][indices];
+    let view = accessor.as_object_mut().unwrap().remove("bufferView").unwrap();
+    accessor["count"] = json!(1u64 << 40);
+    accessor["sparse"] = json!({
+        "count": 1,
+        "indices": { "bufferView": view, "componentType": 5123 },
+        "values": { "bufferView": view },
+    });
+    let file = fixture.write_gltf(&input, "zeros");
+    refused(
+        &file,
+        &output,
+        "accessor 3: 1099511627776 elements without a bufferView",
+    );
+}
