@@ -15,6 +15,7 @@ use crate::buffers::Appender;
 use crate::document::{self, Buffer};
 use crate::io::{self, Asset, Kind};
 use crate::primitive::{self, Computed, Edit};
+use crate::prune;
 use crate::select::{self, Key, Plan, Source};
 use crate::uri;
 
@@ -67,6 +68,7 @@ pub fn convert_asset(
     write: impl FnOnce(&Files) -> Result<(), String>,
 ) -> Result<Outcome, String> {
     let mut outcome = Outcome::default();
+    let used_before = prune::used(&asset.json);
 
     // Plan every primitive; identical ones are computed once and share the result.
     let mut sources: Vec<Source> = Vec::new();
@@ -98,6 +100,10 @@ pub fn convert_asset(
     }
     let side_file = finish_buffers(&mut asset, original_buffers, output)?;
     rebase_uris(&mut asset, original_buffers, output)?;
+    // After the buffers are placed: pruning keeps the new buffer last (`finish_buffers`).
+    if let Some(used_before) = used_before.filter(|_| !computed.is_empty()) {
+        prune::remove_unused(&mut asset.json, &mut asset.buffers, &used_before);
+    }
     let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
     if let Some(path) = side_file {
         let added = asset.buffers.last().and_then(Option::as_deref).unwrap_or_default();

@@ -10,5 +10,6 @@ pub mod convert;
 pub mod document;
 pub mod io;
 pub mod primitive;
+pub mod prune;
 pub mod select;
 pub mod uri;

@@ -60,9 +60,11 @@ fn converted() -> &'static Converted {
     })
 }
 
-/// Whether the tool gave primitive `(m, p)` a new TANGENT.
+/// Whether the tool gave primitive `(m, p)` a new TANGENT: the summary does not list it as left
+/// alone (the accessor's number may be the old one's: a new item takes a removed one's place).
 fn processed(input: &Doc, output: &Doc, m: usize, p: usize) -> bool {
-    output.attribute(m, p, "TANGENT").is_some() && output.attribute(m, p, "TANGENT") != input.attribute(m, p, "TANGENT")
+    output.attribute(m, p, "TANGENT").is_some()
+        && !tool::left_primitives(&converted().stdout, &input.path).contains(&(m, p))
 }
 
 /// Primitives drawing the same accessors with the same texture coordinates are computed once.
@@ -183,16 +185,29 @@ fn check_document(input: &Doc, output: &Doc) {
             "{what}: new {key}"
         );
     }
-    for key in ["accessors", "bufferViews"] {
+    // An existing item stays in its place, unless only what the tool replaced used it: then it is
+    // removed, and another (mostly a new one) may take its place.
+    let replaced = replaced_items(input, output);
+    for (k, key) in ["accessors", "bufferViews"].into_iter().enumerate() {
         let (old, new) = (before[key].as_array().unwrap(), after[key].as_array().unwrap());
-        assert_eq!(old[..], new[..old.len()], "{what}: the existing {key}");
+        for (i, item) in old.iter().enumerate() {
+            assert!(
+                new.get(i) == Some(item) || replaced[k].contains(&i),
+                "{what}: {key}[{i}] changed"
+            );
+        }
     }
     for key in ["buffers", "images"] {
         let Some(old) = before.get(key).and_then(Value::as_array) else {
             continue;
         };
         let new = after[key].as_array().unwrap();
-        for (i, (old, new)) in old.iter().zip(new).enumerate() {
+        // Buffers keep their order when one is removed.
+        let kept = old
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| key != "buffers" || !replaced[2].contains(i));
+        for ((i, old), new) in kept.zip(new) {
             for (field, value) in old.as_object().unwrap() {
                 match (field.as_str(), value.as_str()) {
                     ("uri", Some(uri)) if !uri.starts_with("data:") => assert_eq!(
@@ -222,6 +237,69 @@ fn check_document(input: &Doc, output: &Doc) {
             new["primitives"].as_array().unwrap().len()
         );
     }
+}
+
+/// The accessors, bufferViews and buffers of the input that only processed primitives used: the
+/// tool replaced them by copies (or by a new TANGENT), so it may remove them.
+fn replaced_items(input: &Doc, output: &Doc) -> [HashSet<usize>; 3] {
+    let json = &input.json;
+    let mut users: Vec<Vec<bool>> = vec![Vec::new(); json["accessors"].as_array().map_or(0, Vec::len)];
+    for (m, mesh) in json["meshes"].as_array().into_iter().flatten().enumerate() {
+        for (p, primitive) in mesh["primitives"].as_array().into_iter().flatten().enumerate() {
+            let done = processed(input, output, m, p);
+            let maps =
+                std::iter::once(&primitive["attributes"]).chain(primitive["targets"].as_array().into_iter().flatten());
+            let indices = maps.flat_map(|map| map.as_object().into_iter().flatten().map(|(_, a)| a));
+            for accessor in indices.chain(primitive.get("indices")) {
+                users[accessor.as_u64().unwrap() as usize].push(done);
+            }
+        }
+    }
+    let mut elsewhere = HashSet::new();
+    for skin in json["skins"].as_array().into_iter().flatten() {
+        elsewhere.extend(skin["inverseBindMatrices"].as_u64());
+    }
+    for animation in json["animations"].as_array().into_iter().flatten() {
+        for sampler in animation["samplers"].as_array().into_iter().flatten() {
+            elsewhere.extend(
+                [&sampler["input"], &sampler["output"]]
+                    .into_iter()
+                    .filter_map(Value::as_u64),
+            );
+        }
+    }
+    let accessors: HashSet<usize> = (0..users.len())
+        .filter(|&a| !users[a].is_empty() && users[a].iter().all(|&done| done) && !elsewhere.contains(&(a as u64)))
+        .collect();
+    let mut view_users: Vec<Vec<bool>> = vec![Vec::new(); json["bufferViews"].as_array().map_or(0, Vec::len)];
+    for (a, accessor) in json["accessors"].as_array().into_iter().flatten().enumerate() {
+        let sparse = &accessor["sparse"];
+        for view in [
+            &accessor["bufferView"],
+            &sparse["indices"]["bufferView"],
+            &sparse["values"]["bufferView"],
+        ] {
+            if let Some(view) = view.as_u64() {
+                view_users[view as usize].push(accessors.contains(&a));
+            }
+        }
+    }
+    for image in json["images"].as_array().into_iter().flatten() {
+        if let Some(view) = image["bufferView"].as_u64() {
+            view_users[view as usize].push(false);
+        }
+    }
+    let views: HashSet<usize> = (0..view_users.len())
+        .filter(|&v| !view_users[v].is_empty() && view_users[v].iter().all(|&removable| removable))
+        .collect();
+    let mut buffer_users: Vec<Vec<bool>> = vec![Vec::new(); json["buffers"].as_array().map_or(0, Vec::len)];
+    for (v, view) in json["bufferViews"].as_array().into_iter().flatten().enumerate() {
+        buffer_users[view["buffer"].as_u64().unwrap() as usize].push(views.contains(&v));
+    }
+    let buffers = (0..buffer_users.len())
+        .filter(|&b| !buffer_users[b].is_empty() && buffer_users[b].iter().all(|&removable| removable))
+        .collect();
+    [accessors, views, buffers]
 }
 
 /// A processed primitive: the same fields and attributes plus TANGENT, every attribute and

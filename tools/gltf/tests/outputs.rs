@@ -1,4 +1,5 @@
-//! What the tool must not destroy: its input, a file it did not write, an output half written.
+//! What the tool must not destroy: its input, a file it did not write, an output half written;
+//! and what `--overwrite` must not leave behind.
 
 mod common;
 
@@ -6,7 +7,8 @@ use std::path::Path;
 
 use common::document::Doc;
 use common::fixture::Fixture;
-use common::tool;
+use common::{needs, tool, validator};
+use serde_json::json;
 
 /// Runs the tool; checks that it failed with exit status 1 and said `message`.
 fn fails(args: &[&Path], message: &str) {
@@ -65,4 +67,75 @@ fn a_failed_rename_of_the_main_file_leaves_no_side_buffer() {
     std::fs::create_dir_all(output.join("occupied")).unwrap();
     fails(&[&input, Path::new("-o"), &output], "cannot rename into");
     assert_eq!(tool::listing(&out), ["quad.gltf"], "no side buffer, no temporary file");
+}
+
+/// Runs the tool with `--overwrite` on `input` into `output`.
+fn overwrite(input: &Path, output: &Path) {
+    let result = tool::run([input, Path::new("--overwrite"), Path::new("-o"), output]);
+    assert!(result.status.success(), "{}", input.display());
+}
+
+/// How many items of top-level list `key` a file has.
+fn count(file: &Path, key: &str) -> usize {
+    Doc::open(file).json[key].as_array().map_or(0, Vec::len)
+}
+
+/// The quad with a normal map (so that the validator sees its tangents and texture coordinates
+/// used), run through `--overwrite` twice, as .gltf and .glb: (input, first output, second output).
+fn overwritten_twice(test: &str) -> Vec<[std::path::PathBuf; 3]> {
+    let dir = tool::fresh_dir(test);
+    let mut fixture = Fixture::mirrored_quad();
+    // A 1×1 PNG.
+    let png = "data:image/png;base64,\
+               iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaPgPAAODAgAApfuJAAAAAElFTkSuQmCC";
+    fixture.json["images"] = json!([{ "uri": png }]);
+    fixture.json["textures"] = json!([{ "source": 0 }]);
+    fixture.json["materials"] = json!([{ "normalTexture": { "index": 0 } }]);
+    fixture.primitive(0)["material"] = json!(0);
+    [fixture.write_gltf(&dir, "quad"), fixture.write_glb(&dir, "quad")]
+        .into_iter()
+        .map(|input| {
+            let extension = input.extension().unwrap().to_str().unwrap().to_string();
+            let (first, second) = (
+                dir.join(format!("first.{extension}")),
+                dir.join(format!("second.{extension}")),
+            );
+            overwrite(&input, &first);
+            overwrite(&first, &second);
+            [input, first, second]
+        })
+        .collect()
+}
+
+#[test]
+fn overwrite_leaves_no_unused_accessor_or_buffer_view() {
+    for [_, first, second] in overwritten_twice("overwrite-twice") {
+        // POSITION, NORMAL, TEXCOORD_0 and the indices, copied with the split vertices, and TANGENT.
+        for file in [&first, &second] {
+            assert_eq!(count(file, "accessors"), 5, "{}", file.display());
+            assert_eq!(count(file, "bufferViews"), 5, "{}", file.display());
+        }
+        let buffers = if first.extension().unwrap() == "gltf" { 2 } else { 1 };
+        assert_eq!(count(&second, "buffers"), buffers, "{}", second.display());
+        assert_eq!(Doc::open(&second).corners(0, 0, 0).positions.len(), 6);
+    }
+}
+
+#[test]
+#[cfg_attr(
+    tbasis_missing_gltf_validator,
+    ignore = "needs node with the Khronos glTF Validator (npm install --prefix tools/gltf/node_modules_dir gltf-validator)"
+)]
+fn overwrite_twice_passes_the_validator_with_no_unused_object() {
+    needs::GLTF_VALIDATOR.require();
+    for [input, _, second] in overwritten_twice("overwrite-validated") {
+        let (before, after) = (validator::report(&input), validator::report(&second));
+        assert!(
+            !before.iter().any(|issue| issue.code == "UNUSED_OBJECT"),
+            "{}: {before:#?}",
+            input.display()
+        );
+        let new = validator::new_issues(&before, &after);
+        assert!(new.is_empty(), "{}: {new:#?}", second.display());
+    }
 }

@@ -6,7 +6,7 @@ use std::process::Command;
 
 use super::needs;
 
-/// One error (severity 0) or warning (1).
+/// One error (severity 0), warning (1) or information (2).
 #[derive(Clone, Debug)]
 pub struct Issue {
     pub code: String,
@@ -17,6 +17,13 @@ pub struct Issue {
 
 /// The errors and warnings the validator reports for `file`.
 pub fn issues(file: &Path) -> Vec<Issue> {
+    let mut issues = report(file);
+    issues.retain(|issue| issue.severity <= 1);
+    issues
+}
+
+/// The errors, warnings and informations (severity 2) the validator reports for `file`.
+pub fn report(file: &Path) -> Vec<Issue> {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/validate.js");
     let module = needs::repo_dir().join(needs::GLTF_VALIDATOR_MODULE);
     let output = Command::new("node")
