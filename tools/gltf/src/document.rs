@@ -370,8 +370,8 @@ const LISTS: [&str; 13] = [
 ];
 
 /// References in the parts of a document the tool does not read, checked as the gltf crate checked
-/// them: (where, the list it refers to). In a path, `*` stands for every item of an array and
-/// `*Texture` for every field whose name ends in `Texture`.
+/// them: (where, the list it refers to). In a path, `*` stands for every item of an array (or
+/// value of an object) and `*Texture` for every field whose name ends in `Texture`.
 const REFERENCES: [(&str, &str); 19] = [
     ("scene", "scenes"),
     ("scenes/*/nodes/*", "nodes"),
@@ -514,7 +514,8 @@ fn visit<'a>(
     }
 }
 
-/// The JSON pointers of every value at `path` (`meshes/*/primitives/*/indices`, as in [`visit`]).
+/// The JSON pointers of every value at `path`: pieces split by `/`, where `*` stands for every
+/// item of an array or value of an object (`meshes/*/primitives/*/attributes/*`).
 pub fn pointers(json: &Value, path: &str) -> Vec<String> {
     let pattern: Vec<&str> = path.split('/').collect();
     let mut out = Vec::new();

@@ -72,7 +72,7 @@ const KNOWN_EXTENSIONS: [&str; 12] = [
     "MSFT_texture_dds",
 ];
 
-/// Which items of each of [`LISTS`] something refers to.
+/// Which accessors, bufferViews and buffers something refers to.
 pub struct Used([Vec<bool>; 3]);
 
 /// What `json` uses; `None` when it uses an extension whose references are unknown.
