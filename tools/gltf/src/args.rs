@@ -40,8 +40,8 @@ pub struct Args {
     #[arg(long)]
     pub force: bool,
 
-    /// Read buffers and images that lie outside the input's folder (absolute paths, `..`, links
-    /// leading out, URI schemes other than data:), which are refused otherwise.
+    /// Accept buffer and image URIs that lead outside the input's folder (absolute paths, `..`,
+    /// links leading out, schemes other than data:), which are refused otherwise.
     #[arg(long)]
     pub allow_outside_uris: bool,
 
