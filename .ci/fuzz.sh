@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer target `generate` (fuzz/fuzz_targets/generate.rs) for a bounded time.
+# Runs the libFuzzer targets `generate` (fuzz/fuzz_targets/generate.rs, the C ABI) and `gltf_tool`
+# (fuzz/fuzz_targets/gltf_tool.rs, the glTF tool's reader and converter) for a bounded time: two
+# thirds of it for the first, a third for the second.
 #
-#   bash .ci/fuzz.sh [SECONDS]    # default 60
+#   bash .ci/fuzz.sh [SECONDS]    # default 60, in all
 #
 # Exits non-zero on any crash, sanitizer report, timeout or build failure, and prints libFuzzer's
-# final stats line. The corpus grows in fuzz/corpus/generate (not tracked); the inputs in
-# fuzz/regressions are replayed first and then seed the run. The seed is fixed (FUZZ_SEED to
-# change it); a run repeats exactly only from the same corpus.
-# To read a failure: FUZZ_DEBUG=1 fuzz/target/x86_64-unknown-linux-gnu/release/generate INPUT
+# final stats line per target. The corpora grow in fuzz/corpus/TARGET (not tracked); the inputs in
+# fuzz/regressions (generate) and fuzz/seeds/gltf_tool are replayed first and then seed the run.
+# The seed is fixed (FUZZ_SEED to change it); a run repeats exactly only from the same corpus.
+# To read a failure: FUZZ_DEBUG=1 fuzz/target/x86_64-unknown-linux-gnu/release/TARGET INPUT
 set -euo pipefail
 
 seconds="${1:-60}"
@@ -34,32 +36,39 @@ if [[ "$toolchain" != nightly* ]]; then
 fi
 echo "fuzz: toolchain $toolchain ($(cargo "+$toolchain" --version)), ${seconds}s, seed $seed"
 
-mkdir -p corpus/generate
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
 
-# Known crashers and past findings first: each must pass.
-shopt -s nullglob
-regressions=(regressions/*)
-if ((${#regressions[@]} > 0)); then
-    cargo "+$toolchain" fuzz run generate "${regressions[@]}" -- -runs=1 >"$log" 2>&1 || {
-        cat "$log"
-        echo "fuzz: a regression input fails" >&2
-        exit 1
-    }
-fi
+# fuzz TARGET SECONDS KNOWN [LIBFUZZER OPTIONS...]: replays the inputs in the folder KNOWN (each
+# must pass), then fuzzes from corpus/TARGET and KNOWN for SECONDS.
+fuzz() {
+    local target="$1" seconds="$2" known="$3"
+    shift 3
+    mkdir -p "corpus/$target"
+    shopt -s nullglob
+    local inputs=("$known"/*)
+    if ((${#inputs[@]} > 0)); then
+        cargo "+$toolchain" fuzz run "$target" "${inputs[@]}" -- -runs=1 "$@" >"$log" 2>&1 || {
+            cat "$log"
+            echo "fuzz: $target: an input of $known fails" >&2
+            exit 1
+        }
+    fi
+    local status=0
+    cargo "+$toolchain" fuzz run "$target" "corpus/$target" "$known" -- \
+        -max_total_time="$seconds" -seed="$seed" -rss_limit_mb=2048 -timeout=10 \
+        -print_final_stats=1 "$@" >"$log" 2>&1 || status=$?
+    if ((status != 0)); then
+        # The crash report, the input's path and how to reproduce it.
+        tail -n 80 "$log"
+        echo "fuzz: $target FAILED (exit $status)" >&2
+        exit "$status"
+    fi
+    grep -E '^#[0-9]+[[:space:]]+DONE' "$log" | tail -n 1 || true
+    grep -E '^Done [0-9]+ runs' "$log" | tail -n 1 || true
+    echo "fuzz: $target: no crash in ${seconds}s"
+}
 
-status=0
-cargo "+$toolchain" fuzz run generate corpus/generate regressions -- \
-    -max_total_time="$seconds" -seed="$seed" -rss_limit_mb=2048 -timeout=10 \
-    -print_final_stats=1 >"$log" 2>&1 || status=$?
-
-if ((status != 0)); then
-    # The crash report, the input's path and how to reproduce it.
-    tail -n 80 "$log"
-    echo "fuzz: FAILED (exit $status)" >&2
-    exit "$status"
-fi
-grep -E '^#[0-9]+[[:space:]]+DONE' "$log" | tail -n 1 || true
-grep -E '^Done [0-9]+ runs' "$log" | tail -n 1 || true
-echo "fuzz: no crash in ${seconds}s"
+# Known crashers and past findings of the C ABI (fuzz/regressions), and the glTF tool's seeds.
+fuzz generate "$((seconds - seconds / 3))" regressions
+fuzz gltf_tool "$((seconds / 3))" seeds/gltf_tool -dict=gltf_tool.dict

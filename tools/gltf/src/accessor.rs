@@ -8,6 +8,11 @@ use crate::document::{Accessor, BufferView, ComponentType, Sparse};
 /// Buffers as loaded (see [`crate::buffers::load`]).
 pub type Buffers = [Option<Vec<u8>>];
 
+/// The most bytes an accessor without a bufferView may hold. Its size is not bounded by the file:
+/// a few bytes of JSON could otherwise ask for more memory than the machine has, which aborts
+/// the whole run. 256 MiB: 22 million positions.
+pub const MAX_ZEROS: usize = 1 << 28;
+
 /// What one element of an accessor is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Layout {
@@ -54,6 +59,12 @@ pub fn packed(json: &Value, buffers: &Buffers, index: usize) -> Result<(Layout, 
         .ok_or_else(|| format!("{what}: too large"))?;
     let mut out = match accessor.buffer_view {
         // No bufferView: zeros, unless sparse says otherwise.
+        None if total > MAX_ZEROS => {
+            return Err(format!(
+                "{what}: {} elements without a bufferView, {total} bytes of zeros (at most {MAX_ZEROS} are read)",
+                layout.count
+            ))
+        }
         None => vec![0u8; total],
         Some(view_index) => {
             let view = BufferView::read(json, view_index)?;
@@ -80,6 +91,7 @@ pub fn packed(json: &Value, buffers: &Buffers, index: usize) -> Result<(Layout, 
             } else {
                 let mut out = Vec::with_capacity(total);
                 for element in 0..layout.count {
+                    // Below `end`, checked above.
                     let at = start + element * stride;
                     out.extend_from_slice(&bytes[at..at + size]);
                 }
@@ -117,6 +129,7 @@ fn apply_sparse(
             "sparse accessor {index}: its {n} indices or values run past their bufferViews"
         ));
     }
+    // Within the lengths checked above, and `target` within `count`.
     for k in 0..n {
         let at = sparse.indices_offset + k * index_size;
         let target = read_index(&indices[at..at + index_size]) as usize;

@@ -34,6 +34,16 @@ pub struct Args {
     #[arg(long)]
     pub overwrite: bool,
 
+    /// Replace an existing OUT.tangents.bin beside an output, which is refused otherwise: it may
+    /// hold another file's data.
+    #[arg(long)]
+    pub force: bool,
+
+    /// Accept buffer and image URIs that lead outside the input's folder (absolute paths, `..`,
+    /// links leading out, schemes other than data:), which are refused otherwise.
+    #[arg(long)]
+    pub allow_outside_uris: bool,
+
     /// How tangents are computed.
     #[arg(long, value_enum, default_value_t = MethodArg::Mikktspace)]
     pub method: MethodArg,

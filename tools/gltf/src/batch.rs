@@ -36,9 +36,7 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> To
     let changed = AtomicUsize::new(0);
     let work = || {
         while let Some(job) = jobs.get(next.fetch_add(1, Ordering::Relaxed)) {
-            // A bug met in one file must not end the batch.
-            let result = catch_unwind(AssertUnwindSafe(|| convert(job, settings)))
-                .unwrap_or_else(|panic| Err(format!("internal error: {}", panic_message(&panic))));
+            let result = caught(|| convert(job, settings));
             bar.suspend(|| match &result {
                 Ok(outcome) if !quiet => println!("{}", summary(job, outcome)),
                 Ok(_) => {}
@@ -103,10 +101,37 @@ fn summary(job: &Job, outcome: &Outcome) -> String {
     line
 }
 
+/// What `work` returns, or an error with the message of its panic: a bug met in one file must
+/// not end the batch.
+fn caught<T>(work: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    // `panic.as_ref()`: the payload itself. `&panic` would coerce to a `dyn Any` holding the box,
+    // in which no downcast finds the message.
+    catch_unwind(AssertUnwindSafe(work))
+        .map_err(|panic| format!("internal error: {}", panic_message(panic.as_ref())))?
+}
+
+/// What a panic said, from its payload.
 fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
     panic
         .downcast_ref::<&str>()
         .map(|s| s.to_string())
         .or_else(|| panic.downcast_ref::<String>().cloned())
         .unwrap_or_else(|| "a panic".into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_caught_panic_gives_its_message() {
+        let quiet = std::panic::take_hook();
+        std::panic::set_hook(Box::new(|_| {}));
+        let literal = caught(|| -> Result<(), String> { panic!("a literal") });
+        let formatted = caught(|| -> Result<(), String> { panic!("index {} out of range", 7) });
+        std::panic::set_hook(quiet);
+        assert_eq!(literal, Err("internal error: a literal".to_string()));
+        assert_eq!(formatted, Err("internal error: index 7 out of range".to_string()));
+        assert_eq!(caught(|| Ok(3)), Ok(3));
+    }
 }

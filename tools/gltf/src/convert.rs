@@ -15,6 +15,7 @@ use crate::buffers::Appender;
 use crate::document::{self, Buffer};
 use crate::io::{self, Asset, Kind};
 use crate::primitive::{self, Computed, Edit};
+use crate::prune;
 use crate::select::{self, Key, Plan, Source};
 use crate::uri;
 
@@ -22,6 +23,10 @@ use crate::uri;
 pub struct Settings {
     pub options: Options,
     pub overwrite: bool,
+    /// Read buffers and images outside the input's folder ([`crate::uri::outside`]).
+    pub allow_outside_uris: bool,
+    /// Replace an existing side buffer (`OUT.tangents.bin`) that this run did not write.
+    pub replace_side_files: bool,
     /// Threads for the primitives of one file.
     pub threads: usize,
 }
@@ -50,8 +55,31 @@ impl Outcome {
 /// (`--check`), computes everything, writes nothing and says what would change.
 pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     let start = Instant::now();
-    let mut asset = io::read(&job.input)?;
+    if let Some(output) = &job.output {
+        io::refuse_to_replace_input(&job.input, output)?;
+    }
+    let asset = io::read(&job.input, settings.allow_outside_uris)?;
+    let mut outcome = convert_asset(asset, job.output.as_deref(), settings, |files| {
+        io::write_files(files, &job.input, settings.replace_side_files)
+    })?;
+    outcome.elapsed = start.elapsed();
+    Ok(outcome)
+}
+
+/// The files of an output: each path with its bytes in pieces, written one after the other; the
+/// main file last.
+pub type Files<'a> = [(PathBuf, Vec<&'a [u8]>)];
+
+/// Adds tangents to `asset` and hands what `output` consists of to `write`; without an output,
+/// only says what would change.
+pub fn convert_asset(
+    mut asset: Asset,
+    output: Option<&Path>,
+    settings: &Settings,
+    write: impl FnOnce(&Files) -> Result<(), String>,
+) -> Result<Outcome, String> {
     let mut outcome = Outcome::default();
+    let used_before = prune::used(&asset.json);
 
     // Plan every primitive; identical ones are computed once and share the result.
     let mut sources: Vec<Source> = Vec::new();
@@ -81,12 +109,15 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
     if !computed.is_empty() {
         grown = append(&mut asset, &sources, &users, &computed, &mut outcome)?;
     }
-    let Some(output) = &job.output else {
-        outcome.elapsed = start.elapsed();
+    let Some(output) = output else {
         return Ok(outcome);
     };
     let side_file = finish_buffers(&mut asset, original_buffers, output)?;
     rebase_uris(&mut asset, original_buffers, output)?;
+    // After the buffers are placed: pruning keeps the new buffer last (`finish_buffers`).
+    if let Some(used_before) = used_before.filter(|_| !computed.is_empty()) {
+        prune::remove_unused(&mut asset.json, &mut asset.buffers, &used_before);
+    }
     let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
     if let Some(path) = side_file {
         let added = asset.buffers.last().and_then(Option::as_deref).unwrap_or_default();
@@ -108,9 +139,8 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
             vec![document.as_slice()]
         }
     };
-    files.push((output.clone(), main));
-    io::write_files(&files, &job.input)?;
-    outcome.elapsed = start.elapsed();
+    files.push((output.to_path_buf(), main));
+    write(&files)?;
     Ok(outcome)
 }
 
@@ -265,7 +295,8 @@ fn side_file_name(asset: &Asset, output: &Path) -> Result<String, String> {
         .ok_or_else(|| format!("{}: the output name is not valid UTF-8", output.display()))?;
     let out_dir = canonical_dir(output)?;
     let in_dir = std::fs::canonicalize(&asset.dir).map_err(|e| format!("{}: {e}", asset.dir.display()))?;
-    let used: Vec<PathBuf> = uris(&asset.json)
+    let used: Vec<PathBuf> = uri::document_uris(&asset.json)
+        .map(|(_, _, u)| u)
         .filter(|u| uri::is_relative_file(u))
         .map(|u| uri::resolve(&in_dir, u))
         .collect();
@@ -276,14 +307,6 @@ fn side_file_name(asset: &Asset, output: &Path) -> Result<String, String> {
         })
         .find(|name| !used.contains(&out_dir.join(name)))
         .ok_or_else(|| "no free name for the new buffer".to_string())
-}
-
-/// Every buffer and image URI of the document.
-fn uris(json: &Value) -> impl Iterator<Item = &str> {
-    ["buffers", "images"]
-        .into_iter()
-        .flat_map(move |key| json[key].as_array().into_iter().flatten())
-        .filter_map(|item| item["uri"].as_str())
 }
 
 /// A document written to another folder must still find its files: relative URIs are rewritten

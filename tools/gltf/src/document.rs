@@ -370,8 +370,8 @@ const LISTS: [&str; 13] = [
 ];
 
 /// References in the parts of a document the tool does not read, checked as the gltf crate checked
-/// them: (where, the list it refers to). In a path, `*` stands for every item of an array and
-/// `*Texture` for every field whose name ends in `Texture`.
+/// them: (where, the list it refers to). In a path, `*` stands for every item of an array (or
+/// value of an object) and `*Texture` for every field whose name ends in `Texture`.
 const REFERENCES: [(&str, &str); 19] = [
     ("scene", "scenes"),
     ("scenes/*/nodes/*", "nodes"),
@@ -439,7 +439,7 @@ pub fn check(json: &Value) -> Result<(), String> {
     }
     for (path, list) in REFERENCES {
         let pattern: Vec<&str> = path.split('/').collect();
-        visit(json, &pattern, String::new(), &mut |at, value| {
+        visit(json, &pattern, Default::default(), &mut |at, _, value| {
             note(
                 to_reference(json, value, list)
                     .map(drop)
@@ -477,27 +477,52 @@ fn invalid(mut errors: Vec<String>) -> String {
     format!("invalid glTF: {}{tail}", errors.join("; "))
 }
 
-/// Calls `found` with every value at `pattern` below `value`, and where it is (`nodes[2].mesh`).
-/// A pattern piece `*` stands for every item of an array; `*Texture`, for every field so named.
-fn visit<'a>(value: &'a Value, pattern: &[&str], at: String, found: &mut impl FnMut(&str, &'a Value)) {
+/// Calls `found` with every value at `pattern` below `value`, where it is (`nodes[2].mesh`) and
+/// its JSON pointer (`/nodes/2/mesh`). A pattern piece `*` stands for every item of an array or
+/// value of an object; `*Texture`, for every field whose name ends in `Texture`.
+fn visit<'a>(
+    value: &'a Value,
+    pattern: &[&str],
+    (at, pointer): (String, String),
+    found: &mut impl FnMut(&str, &str, &'a Value),
+) {
     let Some((piece, rest)) = pattern.split_first() else {
-        found(&at, value);
+        found(&at, &pointer, value);
         return;
     };
     let dot = if at.is_empty() { "" } else { "." };
+    // RFC 6901: `~` and `/` in a name are escaped.
+    let named = |name: &str| {
+        let escaped = name.replace('~', "~0").replace('/', "~1");
+        (format!("{at}{dot}{name}"), format!("{pointer}/{escaped}"))
+    };
     if *piece == "*" {
         for (i, item) in value.as_array().into_iter().flatten().enumerate() {
-            visit(item, rest, format!("{at}[{i}]"), found);
+            visit(item, rest, (format!("{at}[{i}]"), format!("{pointer}/{i}")), found);
+        }
+        for (name, item) in value.as_object().into_iter().flatten() {
+            visit(item, rest, named(name), found);
         }
     } else if let Some(suffix) = piece.strip_prefix('*') {
         for (name, item) in value.as_object().into_iter().flatten() {
             if name.ends_with(suffix) {
-                visit(item, rest, format!("{at}{dot}{name}"), found);
+                visit(item, rest, named(name), found);
             }
         }
     } else if let Some(item) = field(value, piece) {
-        visit(item, rest, format!("{at}{dot}{piece}"), found);
+        visit(item, rest, named(piece), found);
     }
+}
+
+/// The JSON pointers of every value at `path`: pieces split by `/`, where `*` stands for every
+/// item of an array or value of an object (`meshes/*/primitives/*/attributes/*`).
+pub fn pointers(json: &Value, path: &str) -> Vec<String> {
+    let pattern: Vec<&str> = path.split('/').collect();
+    let mut out = Vec::new();
+    visit(json, &pattern, Default::default(), &mut |_, pointer, _| {
+        out.push(pointer.to_string())
+    });
+    out
 }
 
 /// `json[list][index]`, an object.

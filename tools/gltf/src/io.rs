@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use crate::{buffers, document};
+use crate::convert::Files;
+use crate::{buffers, document, uri};
 
 /// Required extensions whose data the tool cannot decode: compressed geometry.
 const UNDECODABLE: [(&str, &str); 3] = [
@@ -34,9 +35,20 @@ pub struct Asset {
     pub dir: PathBuf,
 }
 
-/// Reads and checks `path`; the error says what is wrong (the caller names the file).
-pub fn read(path: &Path) -> Result<Asset, String> {
-    let mut bytes = fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+/// Reads and checks `path`; the error says what is wrong (the caller names the file). Buffers
+/// and images must stay in the file's folder unless `allow_outside_uris` ([`uri::outside`]).
+pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
+    let bytes = fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+    let dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    parse(bytes, dir, allow_outside_uris)
+}
+
+/// Reads and checks the bytes of a .gltf or .glb (told apart by GLB's magic) whose relative URIs
+/// resolve against `dir`.
+pub fn parse(mut bytes: Vec<u8>, dir: PathBuf, allow_outside_uris: bool) -> Result<Asset, String> {
     let (kind, json, bin) = if bytes.starts_with(b"glTF") {
         let (json_range, bin_range) = glb_chunks(&bytes).map_err(|e| format!("not a valid GLB file: {e}"))?;
         let json = parse_json(&bytes[json_range])?;
@@ -52,10 +64,9 @@ pub fn read(path: &Path) -> Result<Asset, String> {
     };
     check_required_extensions(&json)?;
     document::check(&json)?;
-    let dir = match path.parent() {
-        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    if !allow_outside_uris {
+        check_uris_stay_inside(&json, &dir)?;
+    }
     let buffers = buffers::load(&json, bin, &dir)?;
     Ok(Asset {
         kind,
@@ -63,6 +74,20 @@ pub fn read(path: &Path) -> Result<Asset, String> {
         buffers,
         dir,
     })
+}
+
+/// Refuses a buffer or image URI that leads out of `dir`: a tool run on uploaded files must not
+/// copy other files of its machine into its output, nor point the output at them.
+fn check_uris_stay_inside(json: &Value, dir: &Path) -> Result<(), String> {
+    for (list, index, text) in uri::document_uris(json) {
+        if let Some(why) = uri::outside(dir, text) {
+            return Err(format!(
+                "{list} {index}: its uri {text:?} {why}, outside the file's folder; \
+                 --allow-outside-uris reads it all the same"
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn parse_json(bytes: &[u8]) -> Result<Value, String> {
@@ -165,11 +190,27 @@ pub fn encode_gltf(json: &Value) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
-/// Writes every `(path, pieces)` (a file's bytes, in pieces written one after the other) through a
-/// temporary file beside it, renamed into place in order, so that an interrupted run leaves no
-/// half-written file. New files get `like`'s permissions, and are writable by their owner (inputs
-/// are often read-only).
-pub fn write_files(files: &[(PathBuf, Vec<&[u8]>)], like: &Path) -> Result<(), String> {
+/// Refuses an output that is the input itself, by its path or through a link: the run would
+/// replace what it reads.
+pub fn refuse_to_replace_input(input: &Path, output: &Path) -> Result<(), String> {
+    // An output that does not exist yet is no file at all.
+    if same_file::is_same_file(input, output).unwrap_or(false) {
+        return Err(format!(
+            "the output {} is this file; write it elsewhere",
+            output.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Writes the files of an output ([`crate::convert::Files`]: side files first, the main file
+/// last) through temporary files beside them, then renames them into place in that order, so that
+/// an interrupted run leaves no half-written file and the main file never names a side file that
+/// is missing. When a rename fails, the files already renamed are removed: all of the output or
+/// none of it. A side file that exists is replaced only with `replace_side_files` (the user named
+/// the main file, not it). New files get `like`'s permissions, and are writable by their owner
+/// (inputs are often read-only).
+pub fn write_files(files: &Files, like: &Path, replace_side_files: bool) -> Result<(), String> {
     let permissions = fs::metadata(like).map(|m| writable(m.permissions())).ok();
     let mut staged = Vec::new();
     for (path, pieces) in files {
@@ -194,9 +235,28 @@ pub fn write_files(files: &[(PathBuf, Vec<&[u8]>)], like: &Path) -> Result<(), S
         }
         staged.push((file, path));
     }
-    for (file, path) in staged {
-        file.persist(path)
-            .map_err(|e| format!("cannot rename into {}: {}", path.display(), e.error))?;
+    let main = staged.len().saturating_sub(1);
+    let mut placed: Vec<&Path> = Vec::new();
+    for (k, (file, path)) in staged.into_iter().enumerate() {
+        let result = if k == main || replace_side_files {
+            file.persist(path).map(drop)
+        } else {
+            file.persist_noclobber(path).map(drop)
+        };
+        if let Err(e) = result {
+            for done in placed {
+                let _ = fs::remove_file(done);
+            }
+            return Err(if e.error.kind() == std::io::ErrorKind::AlreadyExists {
+                format!(
+                    "{} exists and this run did not write it; remove it, or pass --force to replace it",
+                    path.display()
+                )
+            } else {
+                format!("cannot rename into {}: {}", path.display(), e.error)
+            });
+        }
+        placed.push(path);
     }
     Ok(())
 }

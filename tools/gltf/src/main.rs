@@ -5,20 +5,10 @@
 //! nothing: 0 when no file would change, 1 when some would, 2 for a bad command line or a file
 //! that failed.
 
-mod accessor;
-mod args;
-mod batch;
-mod buffers;
-mod convert;
-mod document;
-mod io;
-mod primitive;
-mod select;
-mod uri;
-
 use std::process::ExitCode;
 
 use clap::Parser;
+use tbasis_gltf::{args, batch, convert};
 
 fn main() -> ExitCode {
     let args = args::Args::parse();
@@ -44,6 +34,8 @@ fn main() -> ExitCode {
     let settings = convert::Settings {
         options: args.options(),
         overwrite: args.overwrite,
+        allow_outside_uris: args.allow_outside_uris,
+        replace_side_files: args.force,
         // Cores the file workers leave idle go to the primitives of each file.
         threads: (cores / workers).max(1),
     };

@@ -4,6 +4,7 @@
 use std::path::{Component, Path, PathBuf};
 
 use base64::Engine;
+use serde_json::Value;
 
 /// The bytes of a `data:` URI, `None` when `uri` is not one; an error when it is one but cannot
 /// be decoded.
@@ -36,6 +37,47 @@ pub fn is_relative_file(uri: &str) -> bool {
         Some(colon) => colon > path_start,
         None => true,
     }
+}
+
+/// Every buffer and image URI of a document: (`buffer` or `image`, its index, the URI).
+pub fn document_uris(json: &Value) -> impl Iterator<Item = (&'static str, usize, &str)> {
+    [("buffers", "buffer"), ("images", "image")]
+        .into_iter()
+        .flat_map(move |(list, singular)| {
+            json[list]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .enumerate()
+                .filter_map(move |(index, item)| Some((singular, index, item["uri"].as_str()?)))
+        })
+}
+
+/// How `uri`, met in a document in folder `dir`, leads out of that folder (`it is an absolute
+/// path`), or `None` when it stays inside: a `data:` URI, or a relative path to a file in `dir`
+/// or below it, links followed.
+pub fn outside(dir: &Path, uri: &str) -> Option<&'static str> {
+    if uri.starts_with("data:") {
+        return None;
+    }
+    if !is_relative_file(uri) {
+        return Some("has a scheme (only data: and relative paths are read)");
+    }
+    let path = decoded_path(uri);
+    // `//host/x` (a network path) has a root; `C:/x` on Windows, a prefix.
+    if path.has_root() || path.components().any(|c| matches!(c, Component::Prefix(_))) {
+        return Some("is an absolute path");
+    }
+    // What `resolve` reads: `..` resolved without the file system.
+    let relative = normalize(&path);
+    if relative.starts_with("..") {
+        return Some("climbs out with ..");
+    }
+    // A link inside the folder may still lead out; what does not exist is read from nowhere.
+    let (Ok(dir), Ok(file)) = (dir.canonicalize(), dir.join(&relative).canonicalize()) else {
+        return None;
+    };
+    (!file.starts_with(dir)).then_some("goes through a link")
 }
 
 /// The file a relative reference names, against the folder of its document.
@@ -160,6 +202,21 @@ mod tests {
             "../../t/n.png"
         );
         assert_eq!(rebase("x#frag", from, Path::new("/")).unwrap(), "m/in/x");
+    }
+
+    #[test]
+    fn uris_leading_out_of_the_folder() {
+        let dir = Path::new("/m/in");
+        assert_eq!(outside(dir, "data:application/octet-stream;base64,AAAA"), None);
+        assert_eq!(outside(dir, "a.bin"), None);
+        assert_eq!(outside(dir, "sub/../a%20b.bin"), None);
+        assert_eq!(outside(dir, "/etc/passwd"), Some("is an absolute path"));
+        assert_eq!(outside(dir, "//host/share/x.bin"), Some("is an absolute path"));
+        assert_eq!(outside(dir, "../x.bin"), Some("climbs out with .."));
+        assert_eq!(outside(dir, "sub/../../x.bin"), Some("climbs out with .."));
+        assert_eq!(outside(dir, "%2E%2E/x.bin"), Some("climbs out with .."));
+        assert!(outside(dir, "file:///etc/passwd").is_some());
+        assert!(outside(dir, "https://example.com/a.bin").is_some());
     }
 
     #[test]

@@ -137,3 +137,146 @@ fn command_line_errors_exit_with_2() {
     }
     assert_eq!(tool::listing(&output), Vec::<String>::new());
 }
+
+/// A quad in `in/` whose buffer `quad.bin` lies in the folder `secret/` beside it, named by the
+/// URI `uri` gives for that file's path.
+#[cfg(unix)]
+fn reaching_out(test: &str, uri: impl Fn(&Path) -> String) -> (PathBuf, PathBuf) {
+    let (input, output) = folders(test);
+    let secret = input.parent().unwrap().join("secret");
+    std::fs::create_dir_all(&secret).unwrap();
+    let file = Fixture::mirrored_quad().write_gltf(&input, "quad");
+    let buffer = secret.join("quad.bin");
+    std::fs::rename(input.join("quad.bin"), &buffer).unwrap();
+    let mut json: serde_json::Value = serde_json::from_slice(&std::fs::read(&file).unwrap()).unwrap();
+    json["buffers"][0]["uri"] = json!(uri(&buffer));
+    std::fs::write(&file, serde_json::to_vec(&json).unwrap()).unwrap();
+    (file, output)
+}
+
+/// A way out of the input's folder: the URI that takes it to the buffer (making the link it goes
+/// through), and whether `--allow-outside-uris` makes it readable.
+#[cfg(unix)]
+struct WayOut {
+    name: &'static str,
+    uri: fn(&Path) -> String,
+    readable: bool,
+}
+
+#[cfg(unix)]
+const WAYS_OUT: [WayOut; 4] = [
+    WayOut {
+        name: "dotdot",
+        uri: |_| "../secret/quad.bin".to_string(),
+        readable: true,
+    },
+    WayOut {
+        name: "absolute",
+        uri: |buffer| buffer.display().to_string(),
+        readable: true,
+    },
+    WayOut {
+        name: "file-scheme",
+        uri: |buffer| format!("file://{}", buffer.display()),
+        readable: false,
+    },
+    WayOut {
+        name: "symlink",
+        uri: |buffer| {
+            let link = buffer.parent().unwrap().parent().unwrap().join("in/link.bin");
+            std::os::unix::fs::symlink(buffer, link).unwrap();
+            "link.bin".to_string()
+        },
+        readable: true,
+    },
+];
+
+#[cfg(unix)]
+#[test]
+fn buffers_outside_the_folder_are_refused() {
+    for way in WAYS_OUT {
+        let (input, output) = reaching_out(&format!("outside-{}", way.name), way.uri);
+        refused(&input, &output, "buffer 0: its uri");
+        refused(
+            &input,
+            &output,
+            "outside the file's folder; --allow-outside-uris reads it",
+        );
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn allow_outside_uris_reads_them() {
+    for way in WAYS_OUT {
+        let (input, output) = reaching_out(&format!("allowed-{}", way.name), way.uri);
+        let out = output.join("quad.gltf");
+        let result = tool::run([
+            input.as_os_str(),
+            "--allow-outside-uris".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        assert_eq!(result.status.success(), way.readable, "{}", way.name);
+        if !way.readable {
+            // No scheme but data: is ever read.
+            assert!(String::from_utf8_lossy(&result.stderr).contains("only files and data URIs"));
+        }
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn a_link_to_a_folder_that_leads_out_is_refused() {
+    let (input, output) = reaching_out("outside-linked-folder", |buffer| {
+        let link = buffer.parent().unwrap().parent().unwrap().join("in/shared");
+        std::os::unix::fs::symlink(buffer.parent().unwrap(), link).unwrap();
+        "shared/quad.bin".to_string()
+    });
+    refused(&input, &output, "goes through a link, outside the file's folder");
+}
+
+#[test]
+fn an_image_outside_the_folder_is_refused() {
+    let (input, output) = folders("outside-image");
+    let mut fixture = Fixture::mirrored_quad();
+    fixture.json["images"] = json!([{ "uri": "textures/../../n.png" }]);
+    let file = fixture.write_gltf(&input, "image");
+    refused(
+        &file,
+        &output,
+        "image 0: its uri \"textures/../../n.png\" climbs out with ..",
+    );
+}
+
+#[test]
+fn an_accessor_offset_that_wraps_around() {
+    let (input, output) = folders("offset-wraps");
+    let mut fixture = Fixture::mirrored_quad();
+    // Offset + the last element's end passes 2^64: unchecked, it would wrap past the bounds check.
+    fixture.json["accessors"][1]["byteOffset"] = json!(u64::MAX - 15);
+    let file = fixture.write_glb(&input, "wraps");
+    refused(&file, &output, "accessor 1: too large");
+}
+
+#[test]
+fn a_huge_accessor_without_data() {
+    let (input, output) = folders("zeros");
+    let mut fixture = Fixture::mirrored_quad();
+    // A few bytes of JSON ask for 2 TB of zeros: the indices, sparse, need no bufferView.
+    let indices = fixture.primitive(0)["indices"].as_u64().unwrap() as usize;
+    let accessor = &mut fixture.json["accessors"][indices];
+    let view = accessor.as_object_mut().unwrap().remove("bufferView").unwrap();
+    accessor["count"] = json!(1u64 << 40);
+    accessor["sparse"] = json!({
+        "count": 1,
+        "indices": { "bufferView": view, "componentType": 5123 },
+        "values": { "bufferView": view },
+    });
+    let file = fixture.write_gltf(&input, "zeros");
+    refused(
+        &file,
+        &output,
+        "accessor 3: 1099511627776 elements without a bufferView",
+    );
+}

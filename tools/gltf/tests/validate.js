@@ -1,4 +1,5 @@
-// Runs the Khronos glTF Validator on one file and prints its errors and warnings as JSON:
+// Runs the Khronos glTF Validator on one file and prints its errors, warnings and informations
+// as JSON:
 //   node validate.js VALIDATOR_MODULE_DIR FILE
 // External resources (buffers, images) are read relative to FILE; a missing one is the
 // validator's own IO_ERROR, as for any reader.
@@ -19,9 +20,9 @@ validator
       }),
   })
   .then((report) => {
-    // Severity 0 is an error, 1 a warning.
+    // Severity 0 is an error, 1 a warning, 2 an information (such as UNUSED_OBJECT).
     const issues = report.issues.messages
-      .filter((m) => m.severity <= 1)
+      .filter((m) => m.severity <= 2)
       .map((m) => ({ code: m.code, severity: m.severity, pointer: m.pointer || '', message: m.message }));
     process.stdout.write(JSON.stringify({ truncated: report.issues.truncated, issues }) + '\n');
   })

@@ -54,3 +54,24 @@ pub fn repaired_corners(stdout: &str, input: &Path) -> usize {
         })
         .map_or(0, |n| n.parse().expect("a count"))
 }
+
+/// The primitives `(mesh, primitive)` the summary of `input` lists as left as they were: the
+/// lines `  mesh M ("name") primitive P: why` after its summary line.
+pub fn left_primitives(stdout: &str, input: &Path) -> Vec<(usize, usize)> {
+    let prefix = format!("{} -> ", input.display());
+    let number = |text: &str| -> usize {
+        let digits: String = text.chars().take_while(char::is_ascii_digit).collect();
+        digits.parse().expect("a number")
+    };
+    stdout
+        .lines()
+        .skip_while(|line| !line.starts_with(&prefix))
+        .skip(1)
+        .map_while(|line| line.strip_prefix("  mesh "))
+        .map(|line| {
+            let (head, _why) = line.split_once(": ").expect("mesh M primitive P: why");
+            let primitive = &head[head.rfind(" primitive ").expect("primitive P") + " primitive ".len()..];
+            (number(line), number(primitive))
+        })
+        .collect()
+}

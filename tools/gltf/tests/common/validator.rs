@@ -1,12 +1,12 @@
 //! The Khronos glTF Validator (npm `gltf-validator`), through `tests/validate.js`.
 
-use std::collections::BTreeSet;
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
 use super::needs;
 
-/// One error (severity 0) or warning (1).
+/// One error (severity 0), warning (1) or information (2).
 #[derive(Clone, Debug)]
 pub struct Issue {
     pub code: String,
@@ -17,6 +17,13 @@ pub struct Issue {
 
 /// The errors and warnings the validator reports for `file`.
 pub fn issues(file: &Path) -> Vec<Issue> {
+    let mut issues = report(file);
+    issues.retain(|issue| issue.severity <= 1);
+    issues
+}
+
+/// The errors, warnings and informations (severity 2) the validator reports for `file`.
+pub fn report(file: &Path) -> Vec<Issue> {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/validate.js");
     let module = needs::repo_dir().join(needs::GLTF_VALIDATOR_MODULE);
     let output = Command::new("node")
@@ -46,7 +53,26 @@ pub fn issues(file: &Path) -> Vec<Issue> {
         .collect()
 }
 
-/// The codes among `issues`.
-pub fn codes(issues: &[Issue]) -> BTreeSet<String> {
-    issues.iter().map(|i| i.code.clone()).collect()
+/// The issues of `after` beyond those of `before`, code by code: where `after` has more issues
+/// of a code than `before`, all of that code, described. Counted, not a set of codes: a file
+/// that already had one IO_ERROR must not hide a second.
+pub fn new_issues(before: &[Issue], after: &[Issue]) -> Vec<String> {
+    let counts = |issues: &[Issue]| {
+        let mut counts = BTreeMap::new();
+        for issue in issues {
+            *counts.entry(issue.code.clone()).or_insert(0usize) += 1;
+        }
+        counts
+    };
+    let (had, has) = (counts(before), counts(after));
+    after
+        .iter()
+        .filter(|issue| has[&issue.code] > had.get(&issue.code).copied().unwrap_or(0))
+        .map(|issue| {
+            format!(
+                "{} {} at {}: {}",
+                issue.code, issue.severity, issue.pointer, issue.message
+            )
+        })
+        .collect()
 }
