@@ -6,14 +6,14 @@
 //! with the GIL released while the library runs. It still checks every array it is given, so that
 //! a direct call cannot make it read or write outside an array.
 
-// The C library's option values and statuses, which the package shares: `src/c_abi/` holds links
-// to the repository's `src/codes.rs` and `src/status.rs`, which the source distribution stores as
-// files.
+// The C library's option values, statuses and test-only fault hook, which the package shares:
+// `src/c_abi/` holds links to the repository's `src/codes.rs`, `src/status.rs` and `src/fault.rs`,
+// which the source distribution stores as files.
 #[allow(dead_code)]
 #[path = "c_abi/codes.rs"]
 mod codes;
 mod errors;
-#[path = "../../../src/fault.rs"]
+#[path = "c_abi/fault.rs"]
 mod fault;
 mod generate;
 mod split;
