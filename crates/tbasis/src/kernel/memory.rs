@@ -9,7 +9,7 @@ use core::mem::{align_of, size_of};
 
 use crate::kernel::error::Error;
 use crate::kernel::sums::{Links, Scratch, VertexSums};
-use crate::kernel::views::pod::{pod_prefix_mut, Pod};
+use crate::kernel::views::pod::{pod_prefix_mut, try_zeroed_bytes, Pod};
 
 /// Either counts the bytes the arrays need or hands them out of caller or heap memory.
 pub(crate) enum Arena<'a> {
@@ -116,14 +116,11 @@ pub(crate) enum Place {
     Heap,
 }
 
-/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]. Reserved fallibly, then cleared
-/// here: a zeroed allocation from the system (`vec![0; len]`) would cost fewer page writes, but
-/// aborts the process when the memory is not there, which the C boundary must never do.
+/// `len` zero bytes from the heap, or [`Error::OutOfMemory`]: a zeroed allocation from the system,
+/// whose fresh pages nobody writes before a call touches them, made fallibly
+/// ([`try_zeroed_bytes`]).
 pub(crate) fn zeroed_bytes(len: usize) -> Result<Vec<u8>, Error> {
-    let mut bytes: Vec<u8> = Vec::new();
-    bytes.try_reserve_exact(len).map_err(|_| Error::OutOfMemory)?;
-    bytes.resize(len, 0);
-    Ok(bytes)
+    try_zeroed_bytes(len).ok_or(Error::OutOfMemory)
 }
 
 /// Runs `job` on the working memory of one call: the first `size(Place::Caller)` bytes of the

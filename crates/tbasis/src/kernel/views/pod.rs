@@ -48,3 +48,26 @@ pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T
     let typed = unsafe { core::slice::from_raw_parts_mut(typed.as_mut_ptr().cast::<T>(), count) };
     Some((typed, rest))
 }
+
+/// `len` zero bytes from the global allocator's zeroed allocation, or `None` when the memory is not
+/// there. The system gives fresh pages already zeroed (`calloc`), so nothing writes them here and
+/// pages a call never touches are never faulted in; `vec![0; len]` makes the same allocation but
+/// aborts the process on failure, which the C boundary must never do. The bytes are the memory the
+/// scratch's typed views are carved from ([`pod_prefix_mut`]).
+pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
+    if len == 0 {
+        return Some(Vec::new());
+    }
+    let layout = std::alloc::Layout::array::<u8>(len).ok()?;
+    // SAFETY: `layout` has a nonzero size, as `alloc_zeroed` requires. A non-null result points to
+    // `len` initialized (zero) bytes from the global allocator with `layout`, alignment 1 and size
+    // `len`: what `Vec::from_raw_parts` needs for a `Vec<u8>` of length and capacity `len`, which
+    // then owns and frees it.
+    unsafe {
+        let pointer = std::alloc::alloc_zeroed(layout);
+        if pointer.is_null() {
+            return None;
+        }
+        Some(Vec::from_raw_parts(pointer, len, len))
+    }
+}
