@@ -20,6 +20,14 @@ struct Case {
     indices: Vec<u32>,
 }
 
+impl Case {
+    fn mesh(&self) -> Mesh<'_> {
+        Mesh::new(&self.positions[..], &self.normals[..])
+            .with_texcoords(&self.texcoords[..])
+            .with_indices(&self.indices[..])
+    }
+}
+
 fn case(rng: &mut TestRng) -> Case {
     let palette: &[f32] = match rng.below(4) {
         0 => &[0.0, 1.0, 2.0, 0.5],
@@ -87,9 +95,7 @@ fn welding_by_value_finds_the_replayed_weld_or_declines() {
     let mut by_value = 0;
     for round in 0..3000 {
         let case = case(&mut rng);
-        let mesh = Mesh::new(&case.positions[..], &case.normals[..])
-            .with_texcoords(&case.texcoords[..])
-            .with_indices(&case.indices[..]);
+        let mesh = case.mesh();
         let attributes = Attributes {
             mesh: &mesh,
             flip_v: false,
@@ -123,9 +129,7 @@ fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
     let (mut trivial, mut truly) = (0, 0);
     for round in 0..3000 {
         let case = case(&mut rng);
-        let mesh = Mesh::new(&case.positions[..], &case.normals[..])
-            .with_texcoords(&case.texcoords[..])
-            .with_indices(&case.indices[..]);
+        let mesh = case.mesh();
         let attributes = Attributes {
             mesh: &mesh,
             flip_v: false,
