@@ -32,18 +32,7 @@ fn the_c_boundary_with_caller_scratch_allocates_nothing() {
 
     for case in [unit_quad(), mirror_fold(), quantized_uv_sphere()] {
         let indices = case.indices.as_ref().unwrap();
-        let mesh = ffi::tbasis_mesh {
-            vertex_count: case.vertex_count(),
-            positions: case.positions.as_ptr().cast(),
-            positions_stride: 12,
-            normals: case.normals.as_ptr().cast(),
-            normals_stride: 12,
-            texcoords: case.texcoords.as_ref().unwrap().as_ptr().cast(),
-            texcoords_stride: 8,
-            indices: indices.as_ptr().cast(),
-            index_count: indices.len(),
-            index_type: codes::TBASIS_INDEX_U32,
-        };
+        let mesh = c_mesh(&case);
         let mut options = ffi::tbasis_options {
             method: 0,
             degenerate_policy: 0,
@@ -137,7 +126,6 @@ type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
 /// to the number of allocations a successful call makes, the call whose `k`-th allocation fails
 /// returns `TBASIS_ERROR_OUT_OF_MEMORY` and writes no output byte.
 fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Case>) {
-    use codes::*;
     use std::ptr::null_mut;
 
     const UNTOUCHED: f32 = -7.5;
@@ -145,18 +133,7 @@ fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Cas
     for &(method, policy) in combinations {
         for case in cases() {
             let indices = case.indices.as_ref().unwrap();
-            let mesh = ffi::tbasis_mesh {
-                vertex_count: case.vertex_count(),
-                positions: case.positions.as_ptr().cast(),
-                positions_stride: 12,
-                normals: case.normals.as_ptr().cast(),
-                normals_stride: 12,
-                texcoords: case.texcoords.as_ref().unwrap().as_ptr().cast(),
-                texcoords_stride: 8,
-                indices: indices.as_ptr().cast(),
-                index_count: indices.len(),
-                index_type: TBASIS_INDEX_U32,
-            };
+            let mesh = c_mesh(&case);
             let options = ffi::tbasis_options {
                 method,
                 degenerate_policy: policy,
@@ -277,5 +254,22 @@ fn each_allocation_of_a_seam_split_may_fail_and_the_call_says_so() {
             new_indices.iter().chain(&sources).all(|&x| x == UNTOUCHED) && appended == usize::MAX,
             "allocation {k} of {made} failed, yet an output was written"
         );
+    }
+}
+
+/// `case` as the C ABI reads it: packed arrays with texture coordinates, 32-bit indices.
+fn c_mesh(case: &Case) -> ffi::tbasis_mesh {
+    let indices = case.indices.as_ref().expect("an indexed case");
+    ffi::tbasis_mesh {
+        vertex_count: case.vertex_count(),
+        positions: case.positions.as_ptr().cast(),
+        positions_stride: 12,
+        normals: case.normals.as_ptr().cast(),
+        normals_stride: 12,
+        texcoords: case.texcoords.as_ref().expect("texture coordinates").as_ptr().cast(),
+        texcoords_stride: 8,
+        indices: indices.as_ptr().cast(),
+        index_count: indices.len(),
+        index_type: codes::TBASIS_INDEX_U32,
     }
 }

@@ -28,6 +28,21 @@ impl Case {
     }
 }
 
+/// Runs `check` on 3000 random cases drawn from `seed`, each with its attributes as mikktspace.c
+/// reads them (V as given).
+fn for_each_case(seed: u64, mut check: impl FnMut(usize, &Case, &Attributes)) {
+    let mut rng = TestRng(seed);
+    for round in 0..3000 {
+        let case = case(&mut rng);
+        let mesh = case.mesh();
+        let attributes = Attributes {
+            mesh: &mesh,
+            flip_v: false,
+        };
+        check(round, &case, &attributes);
+    }
+}
+
 fn case(rng: &mut TestRng) -> Case {
     let palette: &[f32] = match rng.below(4) {
         0 => &[0.0, 1.0, 2.0, 0.5],
@@ -91,18 +106,11 @@ fn by_value_weld(attributes: &Attributes, indices: &[u32]) -> Option<(Vec<u32>, 
 
 #[test]
 fn welding_by_value_finds_the_replayed_weld_or_declines() {
-    let mut rng = TestRng(0xC0FFEE);
     let mut by_value = 0;
-    for round in 0..3000 {
-        let case = case(&mut rng);
-        let mesh = case.mesh();
-        let attributes = Attributes {
-            mesh: &mesh,
-            flip_v: false,
-        };
-        let (welded, source, _) = replayed(&attributes, &case.indices);
-        let Some((ours_welded, class, ours)) = by_value_weld(&attributes, &case.indices) else {
-            continue;
+    for_each_case(0xC0FFEE, |round, case, attributes| {
+        let (welded, source, _) = replayed(attributes, &case.indices);
+        let Some((ours_welded, class, ours)) = by_value_weld(attributes, &case.indices) else {
+            return;
         };
         let count = ours.len();
         by_value += 1;
@@ -118,25 +126,18 @@ fn welding_by_value_finds_the_replayed_weld_or_declines() {
             .iter()
             .enumerate()
             .all(|(v, &c)| (c == NONE) != case.indices.contains(&(v as u32))));
-    }
+    });
     // Not vacuous: most cases without NaN or mixed zeros weld by value.
     assert!(by_value > 1000, "{by_value} of 3000 welded by value");
 }
 
 #[test]
 fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
-    let mut rng = TestRng(0xBEEF);
     let (mut trivial, mut truly) = (0, 0);
-    for round in 0..3000 {
-        let case = case(&mut rng);
-        let mesh = case.mesh();
-        let attributes = Attributes {
-            mesh: &mesh,
-            flip_v: false,
-        };
+    for_each_case(0xBEEF, |round, case, attributes| {
         let v = case.positions.len();
-        let Some((welded, class, source)) = by_value_weld(&attributes, &case.indices) else {
-            continue;
+        let Some((welded, class, source)) = by_value_weld(attributes, &case.indices) else {
+            return;
         };
         let count = source.len();
         let position = |id: u32| attributes.position(source[id as usize]);
@@ -148,10 +149,10 @@ fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
             })
             .collect();
         if ids.is_empty() {
-            continue;
+            return;
         }
         // The truth, from every welded vertex's index.
-        let (_, _, values) = replayed(&attributes, &case.indices);
+        let (_, _, values) = replayed(attributes, &case.indices);
         let edges = ids.iter().flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)]);
         let key = |(a, b): (u32, u32)| {
             let (x, y) = (values[a as usize], values[b as usize]);
@@ -170,14 +171,14 @@ fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
             hi: &mut hi,
             weld,
         };
-        let said = last_run::is_trivial(&attributes, 1, &welded, &class, &source, &ids, memory);
+        let said = last_run::is_trivial(attributes, 1, &welded, &class, &source, &ids, memory);
         truly += usize::from(truly_trivial);
         trivial += usize::from(said);
         assert!(
             !said || truly_trivial,
             "round {round}: called trivial, but the last run is {run:?}"
         );
-    }
+    });
     // Not vacuous: the cells are replayed and the run found whenever it is trivial.
     assert!(
         truly > 300 && trivial == truly,
