@@ -7,7 +7,8 @@
 #
 # Exits non-zero on any crash, sanitizer report, timeout or build failure, and prints libFuzzer's
 # final stats line per target. The corpora grow in fuzz/corpus/TARGET (not tracked); the inputs in
-# fuzz/regressions (generate) and fuzz/seeds/gltf_tool are replayed first and then seed the run.
+# fuzz/regressions (generate) and the glTF tool's seeds (written into fuzz/corpus/gltf_tool_seeds by
+# tools/gltf/examples/fuzz_seeds.rs, when absent) are replayed first and then seed the run.
 # The seed is fixed (FUZZ_SEED to change it); a run repeats exactly only from the same corpus.
 # To read a failure: FUZZ_DEBUG=1 fuzz/target/x86_64-unknown-linux-gnu/release/TARGET INPUT
 set -euo pipefail
@@ -71,4 +72,7 @@ fuzz() {
 
 # Known crashers and past findings of the C ABI (fuzz/regressions), and the glTF tool's seeds.
 fuzz generate "$((seconds - seconds / 3))" regressions
-fuzz gltf_tool "$((seconds / 3))" seeds/gltf_tool -dict=gltf_tool.dict
+if [ ! -e corpus/gltf_tool_seeds/quad.glb ]; then
+    (cd "$root" && cargo run --quiet -p tbasis-gltf --example fuzz_seeds -- fuzz/corpus/gltf_tool_seeds)
+fi
+fuzz gltf_tool "$((seconds / 3))" corpus/gltf_tool_seeds -dict=gltf_tool.dict

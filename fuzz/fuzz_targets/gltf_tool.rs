@@ -6,7 +6,8 @@
 //! not written (inputs with huge accessors of zeros stop after the reading). Any outcome but a
 //! panic (or a sanitizer report) is fine: an error message is the tool's answer to a bad file.
 //!
-//! Seeds: `fuzz/seeds/gltf_tool`, a mirrored quad as .gltf and .glb, and one that also reads
+//! Seeds: written by `cargo run -p tbasis-gltf --example fuzz_seeds -- DIR` (`.ci/fuzz.sh` puts them
+//! in `fuzz/corpus/gltf_tool_seeds`), a mirrored quad as .gltf and .glb, and one that also reads
 //! `a.bin` and has sparse accessors and an existing TANGENT; all three convert. `fuzz/gltf_tool.dict`
 //! holds the words of glTF for the mutator.
 #![no_main]
