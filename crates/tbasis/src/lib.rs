@@ -79,6 +79,16 @@ pub use kernel::report::Report;
 pub use kernel::views::interleaved::VertexLayout;
 pub use kernel::views::strided::{span_bytes, Element, Footprint, Strided, StridedMut};
 
+/// A drop-in for mikktspace.c's callback interface: the `mikktspace` crate's [`Geometry`] trait
+/// and [`generate_tangents`], with mikktspace.c's bits (quads and angular thresholds included).
+/// Moving from that crate, or from bevy_mikktspace's older API, takes one changed `use` line.
+///
+/// [`Geometry`]: mikktspace::Geometry
+/// [`generate_tangents`]: mikktspace::generate_tangents
+pub mod mikktspace {
+    pub use crate::entry::geometry::{generate_tangents, generate_tangents_with, Geometry, Settings};
+}
+
 /// This crate's version, `major * 1000000 + minor * 1000 + patch`: the C library's
 /// `tbasis_version()` and the Python package's `library_version`.
 ///

@@ -4,6 +4,7 @@
 #[cfg(test)]
 mod determinism_tests;
 pub(crate) mod generate;
+pub(crate) mod geometry;
 pub(crate) mod interleaved;
 pub(crate) mod reusable;
 pub(crate) mod seam_split;

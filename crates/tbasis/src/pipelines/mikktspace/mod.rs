@@ -11,6 +11,7 @@
 mod attributes;
 mod corner_terms;
 mod faces;
+pub(crate) mod faces_interface;
 mod groups;
 mod last_run;
 mod neighbors;
