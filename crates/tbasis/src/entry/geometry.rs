@@ -118,14 +118,15 @@ pub fn generate_tangents_with<I: Geometry>(geometry: &mut I, settings: &Settings
         texcoords: &read.texcoords,
         faces: &read.faces,
     };
-    let Ok(spaces) = faces_interface::solve(&mesh, settings.angular_threshold, settings.threads) else {
+    let threads = settings.threads.max(1);
+    let Ok(out) = faces_interface::solve(&mesh, settings.angular_threshold, threads) else {
         return false;
     };
-    let slot_ends = read.faces.iter().skip(1).map(|&(_, first)| first).chain([spaces.len() as u32]);
+    let slot_ends = read.faces.iter().skip(1).map(|&(_, first)| first as usize).chain([out.spaces.len()]);
     for (&(face, first), end) in read.faces.iter().zip(slot_ends) {
-        for (vert, space) in spaces[first as usize..end as usize].iter().enumerate() {
-            let (s, t) = (space.tangent, space.bitangent);
-            geometry.set_tangent(s, t, space.mag_s, space.mag_t, space.preserving, face as usize, vert);
+        for (vert, slot) in (first as usize..end).enumerate() {
+            let (space, preserving) = (&out.spaces[slot], out.preserving[slot] != 0);
+            geometry.set_tangent(space.s, space.t, space.mag_s, space.mag_t, preserving, face as usize, vert);
         }
     }
     true

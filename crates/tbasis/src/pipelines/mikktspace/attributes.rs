@@ -9,9 +9,21 @@ use crate::kernel::vector::Vec3;
 pub(crate) struct Attributes<'a> {
     pub mesh: &'a Mesh<'a>,
     pub flip_v: bool,
+    /// Per corner, mikktspace.c's index for it where faces are not all triangles
+    /// ([`super::faces_interface`]); `None`: corner `3 t + k` is `4 t + k`.
+    pub corner_values: Option<&'a [u32]>,
 }
 
 impl Attributes<'_> {
+    /// mikktspace.c's index for corner `c`: `4 * face + vert` (`MakeIndex`).
+    #[inline(always)]
+    pub fn value_of(&self, c: usize) -> u32 {
+        match self.corner_values {
+            None => (4 * (c / 3) + c % 3) as u32,
+            Some(values) => values[c],
+        }
+    }
+
     #[inline(always)]
     pub fn position(&self, v: u32) -> Vec3 {
         self.mesh.positions.get(v as usize)

@@ -39,7 +39,9 @@ pub(crate) fn good_first(marks: &[u8], order: &mut [u32]) -> usize {
 }
 
 /// Writes, for each good triangle `g` (triangle `order[g]`), its unit dP/ds and dP/dt signed by
-/// the UV orientation (zero where they vanish) and its flags (`InitTriInfo`, eq. 18 and 19). A
+/// the UV orientation (zero where they vanish), its flags (`InitTriInfo`, eq. 18 and 19) and, when
+/// asked, |dP/ds| and |dP/dt| over the texture area (`fMagS`, `fMagT`; only usable triangles'
+/// are ever read). A
 /// batch of triangles at a time, one per lane: every lane performs the C's operations in its
 /// order, so the SIMD paths give its bits ([`crate::kernel::simd`]).
 pub(crate) fn derivatives(
@@ -49,6 +51,7 @@ pub(crate) fn derivatives(
     tangent_s: &mut [Vec3],
     tangent_t: &mut [Vec3],
     flags: &mut [u8],
+    mut magnitudes: Option<&mut [[f32; 2]]>,
 ) {
     crate::kernel::simd::run(
         #[inline(always)]
@@ -57,8 +60,9 @@ pub(crate) fn derivatives(
                 .chunks_mut(LANES)
                 .zip(tangent_t.chunks_mut(LANES))
                 .zip(flags.chunks_mut(LANES));
-            for (order, ((s, t), flags)) in order.chunks(LANES).zip(outputs) {
-                derivatives_batch(attributes, welded, order, [s, t], flags);
+            for (batch, (order, ((s, t), flags))) in order.chunks(LANES).zip(outputs).enumerate() {
+                let magnitudes = magnitudes.as_deref_mut().map(|m| &mut m[batch * LANES..][..order.len()]);
+                derivatives_batch(attributes, welded, order, [s, t], flags, magnitudes);
             }
         },
     );
@@ -66,7 +70,14 @@ pub(crate) fn derivatives(
 
 /// [`derivatives`] for at most [`LANES`] triangles.
 #[inline(always)]
-fn derivatives_batch(attributes: &[Packed], welded: &[u32], order: &[u32], out: [&mut [Vec3]; 2], flags: &mut [u8]) {
+fn derivatives_batch(
+    attributes: &[Packed],
+    welded: &[u32],
+    order: &[u32],
+    out: [&mut [Vec3]; 2],
+    flags: &mut [u8],
+    magnitudes: Option<&mut [[f32; 2]]>,
+) {
     // `[corner][component][lane]`.
     let mut positions = [[[0.0; LANES]; 3]; 3];
     let mut texcoords = [[[0.0; LANES]; 2]; 3];
@@ -80,6 +91,7 @@ fn derivatives_batch(attributes: &[Packed], welded: &[u32], order: &[u32], out: 
     }
     let mut lanes_out = [[[0.0; LANES]; 3]; 2];
     let mut lane_flags = [0u32; LANES];
+    let mut lane_magnitudes = [[0.0f32; 2]; LANES];
     let [t1, t2, t3] = &texcoords;
     for i in 0..lanes_in_use(order.len()) {
         let [v1, v2, v3] = [0, 1, 2].map(|k| lane3(&positions[k], i).to_array());
@@ -106,7 +118,9 @@ fn derivatives_batch(attributes: &[Packed], welded: &[u32], order: &[u32], out: 
             [0.0; 3]
         };
         // The magnitudes |dP/ds|, |dP/dt| only decide whether the triangle is usable.
-        let usable = has_area & not_zero(length_s / abs_area) & not_zero(length_t / abs_area);
+        let magnitudes = [length_s / abs_area, length_t / abs_area];
+        let usable = has_area & not_zero(magnitudes[0]) & not_zero(magnitudes[1]);
+        lane_magnitudes[i] = magnitudes;
         set_lane3(&mut lanes_out[0], i, s);
         set_lane3(&mut lanes_out[1], i, t);
         let any = if usable { 0 } else { u32::from(GROUP_WITH_ANY) };
@@ -118,5 +132,37 @@ fn derivatives_batch(attributes: &[Packed], welded: &[u32], order: &[u32], out: 
         s[i] = lane3(&lanes_out[0], i).to_array();
         t[i] = lane3(&lanes_out[1], i).to_array();
         flags[i] = lane_flags[i] as u8;
+    }
+    if let Some(magnitudes) = magnitudes {
+        magnitudes.copy_from_slice(&lane_magnitudes[..order.len()]);
+    }
+}
+
+/// Gives the two good triangles of a quad one orientation where their texture coordinates
+/// disagree (`InitTriInfo`): one without usable derivatives takes the other's, else the larger
+/// texture area decides (the first triangle's on a tie). `ids`, `flags` are per good triangle,
+/// `order` the triangle each is, and `face_of` each triangle's face.
+pub(crate) fn force_quad_orientation(
+    attributes: &[Packed],
+    ids: &[[u32; 3]],
+    order: &[u32],
+    face_of: &[u32],
+    flags: &mut [u8],
+) {
+    let texture_area = |ids: [u32; 3]| {
+        let [t1, t2, t3] = ids.map(|id| texcoord(&attributes[id as usize]));
+        let (t21x, t21y) = (t2[0] - t1[0], t2[1] - t1[1]);
+        let (t31x, t31y) = (t3[0] - t1[0], t3[1] - t1[1]);
+        (t21x * t31y - t21y * t31x).abs()
+    };
+    for b in 1..ids.len() {
+        let a = b - 1;
+        let same_face = face_of[order[a] as usize] == face_of[order[b] as usize];
+        if !same_face || (flags[a] ^ flags[b]) & ORIENT_PRESERVING == 0 {
+            continue;
+        }
+        let keep_first = flags[b] & GROUP_WITH_ANY != 0 || texture_area(ids[a]) >= texture_area(ids[b]);
+        let (from, to) = if keep_first { (a, b) } else { (b, a) };
+        flags[to] = (flags[to] & !ORIENT_PRESERVING) | (flags[from] & ORIENT_PRESERVING);
     }
 }

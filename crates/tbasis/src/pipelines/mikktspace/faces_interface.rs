@@ -1,12 +1,23 @@
 //! mikktspace.c's own interface: faces of 3 or 4 vertices read through callbacks, quads split as
 //! it splits them, and every output of `setTSpace` (tangent, bitangent, magnitudes, orientation).
+//!
+//! Each face vertex is a slot of its own, numbered `4 * face + vert` as mikktspace.c numbers it
+//! (`MakeIndex`); the triangles index the slots, and the triangle pipeline runs on them
+//! ([`super::solve`]) with the three things quads add: the sub-group rule that joins a quad's two
+//! triangles, the orientation one quad's triangles share, and the quad's slots its two triangles
+//! both write (averaged, `AvgTSpace`), or that its degenerate triangle leaves to its good one.
 #![forbid(unsafe_code)]
 
+use super::attributes::Attributes;
+use super::tspace::{threshold_cosine, Full};
+use super::{copy_to_degenerate, scratch_bytes, solve as solve_triangles, Buffers, FaceExtras, NONE};
 use crate::kernel::error::Error;
-use crate::kernel::vector::Vec3;
+use crate::kernel::memory::{zeroed_bytes, Arena};
+use crate::kernel::mesh::Mesh;
+use crate::kernel::report::Report;
+use crate::kernel::vector::{equal, Vec3};
 
-/// A mesh as mikktspace.c's callbacks give it: each face's vertices, one slot per face vertex
-/// (`4 * face + vert` is mikktspace.c's index for it).
+/// A mesh as mikktspace.c's callbacks give it: each face's vertices, one slot per face vertex.
 pub(crate) struct FaceMesh<'a> {
     /// Per slot.
     pub positions: &'a [Vec3],
@@ -17,17 +28,178 @@ pub(crate) struct FaceMesh<'a> {
     pub faces: &'a [(u32, u32)],
 }
 
-/// One slot's tangent space, as `setTSpace` receives it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct TangentSpace {
-    pub tangent: Vec3,
-    pub bitangent: Vec3,
-    pub mag_s: f32,
-    pub mag_t: f32,
-    pub preserving: bool,
+/// Per slot: its tangent space (`setTSpace`'s tangent, bitangent and magnitudes) and whether the
+/// texture keeps the winding there (1) or mirrors it (0).
+pub(crate) struct Spaces {
+    pub spaces: Vec<Full>,
+    pub preserving: Vec<u8>,
 }
 
-/// Every slot's tangent space, or why there is none.
-pub(crate) fn solve(_mesh: &FaceMesh, _angular_threshold: f32, _threads: u32) -> Result<Vec<TangentSpace>, Error> {
-    Err(Error::OutOfMemory)
+/// The largest slot count: slots, corners and mikktspace.c's indices stay clear of the sentinels.
+const MAX_SLOTS: usize = (i32::MAX / 4) as usize;
+
+/// Every slot's tangent space, bit for bit what mikktspace.c's `genTangSpace` gives.
+pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Result<Spaces, Error> {
+    let slot_count = mesh.positions.len();
+    if slot_count > MAX_SLOTS {
+        return Err(Error::SizeOverflow);
+    }
+    // 1. The triangles, as mikktspace.c lists them (GenerateInitialVerticesIndexList).
+    let triangles = Triangles::split(mesh)?;
+    let corner_count = triangles.slots.len();
+
+    // 2. The triangle pipeline on the slots, with the quads' rules (steps 3 to 9).
+    let view = Mesh::new(mesh.positions, mesh.normals)
+        .with_texcoords(mesh.texcoords)
+        .with_indices(&triangles.slots[..]);
+    let attributes = Attributes {
+        mesh: &view,
+        flip_v: false,
+        corner_values: Some(&triangles.values),
+    };
+    let mut memory = zeroed_bytes(scratch_bytes(slot_count, corner_count).ok_or(Error::SizeOverflow)?)?;
+    let mut buffers = Buffers::take(&mut Arena::Carve(&mut memory), slot_count, corner_count)?;
+    buffers.welded.copy_from_slice(&triangles.slots);
+    let mut corners: Vec<Full> = filled(corner_count, Full::DEFAULT)?;
+    let mut magnitudes = filled(corner_count / 3, [0.0f32; 2])?;
+    let mut extras = FaceExtras {
+        face_of: &triangles.face_of,
+        magnitudes: &mut magnitudes,
+        threshold: threshold_cosine(angular_threshold),
+    };
+    let mut report = Report::default();
+    let solved = solve_triangles(&attributes, threads, &mut buffers, &mut corners, Some(&mut extras), &mut report)?;
+
+    // 3. Each slot takes its corner's space, or both corners' average where the two triangles
+    //    of a quad meet, with the orientation of the later group (GenerateTSpaces, AvgTSpace).
+    let mut out = Spaces {
+        spaces: filled(slot_count, Full::DEFAULT)?,
+        preserving: filled(slot_count, 0u8)?,
+    };
+    let mut writer: Vec<u32> = filled(slot_count, NONE)?;
+    for (&t, groups) in buffers.order[..solved.good].iter().zip(&*buffers.assigned) {
+        for (k, &group) in groups.iter().enumerate().filter(|&(_, &g)| g != NONE) {
+            let corner = 3 * t as usize + k;
+            let slot = triangles.slots[corner] as usize;
+            let (space, preserving) = (corners[corner], buffers.orientation[corner]);
+            if writer[slot] == NONE {
+                out.spaces[slot] = space;
+            } else {
+                out.spaces[slot] = out.spaces[slot].average(space);
+            }
+            if writer[slot] == NONE || group >= writer[slot] {
+                (writer[slot], out.preserving[slot]) = (group, preserving);
+            }
+        }
+    }
+
+    // 4. Degenerate triangles copy a good corner's space (DegenEpilogue), except in a quad whose
+    //    other triangle is good: there the slot the good one lacks copies the one of its slots
+    //    at the same position.
+    let mut degenerate: Vec<bool> = filled(corner_count / 3, false)?;
+    for &t in &buffers.order[solved.good..corner_count / 3] {
+        degenerate[t as usize] = true;
+    }
+    let one_degenerate = |t: usize| {
+        let partner = [t.wrapping_sub(1), t + 1]
+            .into_iter()
+            .find(|&p| p < degenerate.len() && triangles.face_of[p] == triangles.face_of[t]);
+        partner.is_some_and(|p| degenerate[p] != degenerate[t])
+    };
+    let slot_of = |corner: usize| triangles.slots[corner] as usize;
+    copy_to_degenerate(
+        &mut buffers,
+        &solved,
+        (&mut out.spaces, &mut out.preserving),
+        slot_of,
+        one_degenerate,
+    );
+    for &t in buffers.order[..solved.good].iter().filter(|&&t| one_degenerate(t as usize)) {
+        let corners = 3 * t as usize..3 * t as usize + 3;
+        let verts = [0, 1, 2].map(|k| (triangles.values[corners.start + k] % 4) as usize);
+        let present = verts.iter().fold(0u32, |bits, &v| bits | 1 << v);
+        let missing = [1, 2, 3].into_iter().find(|&v| present & (1 << v) == 0).unwrap_or(0);
+        let first_slot = slot_of(corners.start) - verts[0];
+        let target = mesh.positions[first_slot + missing];
+        if let Some(&v) = verts.iter().find(|&&v| equal(mesh.positions[first_slot + v], target)) {
+            let (from, to) = (first_slot + v, first_slot + missing);
+            out.spaces[to] = out.spaces[from];
+            out.preserving[to] = out.preserving[from];
+        }
+    }
+    Ok(out)
+}
+
+/// The triangles of the faces, in face order: per corner its slot and mikktspace.c's index, per
+/// triangle its face.
+struct Triangles {
+    slots: Vec<u32>,
+    values: Vec<u32>,
+    face_of: Vec<u32>,
+}
+
+impl Triangles {
+    /// Splits each quad along its shorter diagonal in texture space, or in position when those
+    /// are equal (the 0-2 diagonal unless 1-3 is strictly shorter), as mikktspace.c does.
+    fn split(mesh: &FaceMesh) -> Result<Triangles, Error> {
+        let slot_count = mesh.positions.len();
+        let ends = mesh.faces.iter().skip(1).map(|&(_, first)| first as usize).chain([slot_count]);
+        let triangle_count: usize = mesh.faces.iter().zip(ends.clone()).map(|(&(_, first), end)| end - first as usize - 2).sum();
+        let mut triangles = Triangles {
+            slots: with_capacity(3 * triangle_count)?,
+            values: with_capacity(3 * triangle_count)?,
+            face_of: with_capacity(triangle_count)?,
+        };
+        for (&(face, first), end) in mesh.faces.iter().zip(ends) {
+            let squared = |a: Vec3, b: Vec3| {
+                let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+            };
+            let slot = |vert: usize| first as usize + vert;
+            let uv = |vert: usize| {
+                let [u, v] = mesh.texcoords[slot(vert)];
+                [u, v, 1.0]
+            };
+            let split: &[[usize; 3]] = if end - first as usize == 3 {
+                &[[0, 1, 2]]
+            } else {
+                let (texture_02, texture_13) = (squared(uv(0), uv(2)), squared(uv(1), uv(3)));
+                let diagonal_02 = if texture_02 < texture_13 {
+                    true
+                } else if texture_13 < texture_02 {
+                    false
+                } else {
+                    let p = |vert: usize| mesh.positions[slot(vert)];
+                    !(squared(p(1), p(3)) < squared(p(0), p(2)))
+                };
+                if diagonal_02 {
+                    &[[0, 1, 2], [0, 2, 3]]
+                } else {
+                    &[[0, 1, 3], [1, 2, 3]]
+                }
+            };
+            for verts in split {
+                triangles.face_of.push(face);
+                for &vert in verts {
+                    triangles.slots.push(slot(vert) as u32);
+                    triangles.values.push(4 * face + vert as u32);
+                }
+            }
+        }
+        Ok(triangles)
+    }
+}
+
+/// An empty vector with room for `n` elements, or [`Error::OutOfMemory`].
+fn with_capacity<T>(n: usize) -> Result<Vec<T>, Error> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory)?;
+    Ok(v)
+}
+
+/// `n` copies of `value`, or [`Error::OutOfMemory`].
+fn filled<T: Clone>(n: usize, value: T) -> Result<Vec<T>, Error> {
+    let mut v = with_capacity(n)?;
+    v.resize(n, value);
+    Ok(v)
 }

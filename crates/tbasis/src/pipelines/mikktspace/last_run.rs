@@ -5,7 +5,7 @@
 //! welded vertices, and leaves the run of the largest one unsorted (see [`super::neighbors`]). When
 //! that run holds one edge, or the two sides of one edge, its order changes no pairing, and every
 //! edge pairs as sorted runs pair, which needs no index at all. A welded vertex's index is that of
-//! one of its corners, `4 * face + corner`, so it lies between the smallest and the largest of
+//! one of its corners, `4 * face + vert`, so it lies between the smallest and the largest of
 //! them (`lo`, `hi`). The largest smaller index `i0*` is at least `L`, the largest smaller `lo`
 //! over the edges, and both ends of an edge of that run have an index of at least `i0*`, so a `hi`
 //! of at least `L`: only those vertices' indices are needed, and the splitting is replayed on just
@@ -13,7 +13,7 @@
 #![forbid(unsafe_code)]
 
 use super::attributes::Attributes;
-use super::weld::{self, value_of, Wanted, WeldScratch};
+use super::weld::{self, Wanted, WeldScratch};
 use super::NONE;
 
 /// The share of corners the replayed cells may hold (1 in this many) before the full weld is the
@@ -44,12 +44,11 @@ pub(crate) fn is_trivial(
 ) -> bool {
     let Memory { lo, hi, weld: scratch } = memory;
     lo.fill(NONE);
+    hi.fill(0);
     for (c, &id) in welded.iter().enumerate() {
-        let (id, v) = (id as usize, value_of(c));
-        if lo[id] == NONE {
-            lo[id] = v;
-        }
-        hi[id] = v;
+        let (id, v) = (id as usize, attributes.value_of(c));
+        lo[id] = lo[id].min(v);
+        hi[id] = hi[id].max(v);
     }
     let edges = || {
         ids.iter()
@@ -82,7 +81,7 @@ pub(crate) fn is_trivial(
         |c, first| {
             let id = welded[c as usize] as usize;
             if candidate(id) {
-                lo[id] = value_of(first as usize);
+                lo[id] = attributes.value_of(first as usize);
             }
         },
     );

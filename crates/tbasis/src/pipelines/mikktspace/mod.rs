@@ -267,6 +267,7 @@ fn compute<'a>(
     let attributes = Attributes {
         mesh,
         flip_v: options.flip_v,
+        corner_values: None,
     };
     *report = Report::default();
 
@@ -296,7 +297,13 @@ fn compute<'a>(
     }
     // 2. mikktspace.c proper, steps 3 to 10 (policy REJECT refused a degenerate mesh before).
     let path = if corner_count > 0 {
-        solve(&attributes, options.threads, &mut buffers, report)?
+        let tangents = core::mem::take(&mut buffers.tangents);
+        let solved = solve(&attributes, options.threads, &mut buffers, &mut *tangents, None, report)?;
+        let orientation = core::mem::take(&mut buffers.orientation);
+        let (spaces, corners) = ((&mut *tangents, &mut *orientation), |c: usize| c);
+        copy_to_degenerate(&mut buffers, &solved, spaces, corners, |_| false);
+        (buffers.tangents, buffers.orientation) = (tangents, orientation);
+        solved.path
     } else {
         WeldPath::ByValue
     };
@@ -309,8 +316,34 @@ fn compute<'a>(
     Ok((buffers, path))
 }
 
-/// Steps 3 to 10: mikktspace.c proper.
-fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Report) -> Result<WeldPath, Error> {
+/// What mikktspace.c's own interface adds to a triangle mesh ([`faces_interface`]).
+pub(crate) struct FaceExtras<'a> {
+    /// Per triangle: the face it splits from (a quad's two triangles are neighbours in the list).
+    pub face_of: &'a [u32],
+    /// Per good triangle: `fMagS` and `fMagT` (filled by step 5).
+    pub magnitudes: &'a mut [[f32; 2]],
+    /// The angular threshold's cosine ([`tspace::threshold_cosine`]).
+    pub threshold: f32,
+}
+
+/// How [`solve`] ended: the weld it took, the good triangles (the first of `order`) and the
+/// welded vertices.
+struct Solved {
+    path: WeldPath,
+    good: usize,
+    welded_count: usize,
+}
+
+/// Steps 3 to 9: mikktspace.c proper, every good triangle's corners into `spaces` and
+/// `b.orientation` (those no group reaches left as they were).
+fn solve<S: tspace::Space>(
+    attributes: &Attributes,
+    threads: u32,
+    b: &mut Buffers,
+    spaces: &mut [S],
+    mut extras: Option<&mut FaceExtras>,
+    report: &mut Report,
+) -> Result<Solved, Error> {
     let corner_count = b.welded.len();
     let triangles = corner_count / 3;
 
@@ -370,15 +403,18 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let ranges = parallel::ranges(threads, good);
     let (tangent_s, tangent_t, flags) = (&mut b.tangent_s[..good], &mut b.tangent_t[..good], &mut b.flags[..good]);
     let welded = &*b.welded;
-    let mut derivatives = move |threads: u32| {
+    let magnitudes = extras.as_deref_mut().map(|e| &mut e.magnitudes[..good]);
+    let derivatives = move |threads: u32| {
         let ranges = parallel::ranges(threads, good);
         let ends = ranges.ends();
+        let mut magnitudes = magnitudes.map(|m| parallel::split(m, ends, 1));
         let parts = parallel::split(tangent_s, ends, 1)
             .zip(parallel::split(tangent_t, ends, 1))
-            .zip(parallel::split(flags, ends, 1));
-        parallel::run_ranges(ends, parts, |first, ((s, t), flags)| {
+            .zip(parallel::split(flags, ends, 1))
+            .map(|part| (part, magnitudes.as_mut().and_then(Iterator::next)));
+        parallel::run_ranges(ends, parts, |first, (((s, t), flags), magnitudes)| {
             let end = first + flags.len();
-            faces::derivatives(packed, welded, &order[first..end], s, t, flags)
+            faces::derivatives(packed, welded, &order[first..end], s, t, flags, magnitudes)
         });
     };
     let values = (path != WeldPath::ByValue).then_some(&b.values[..welded_count]);
@@ -395,6 +431,9 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     } else {
         derivatives(threads);
         pairing()?;
+    }
+    if let Some(extras) = extras.as_deref() {
+        faces::force_quad_orientation(packed, ids, order, extras.face_of, &mut b.flags[..good]);
     }
     for t in 0..triangles {
         let unusable = t >= good || b.flags[t] & GROUP_WITH_ANY != 0;
@@ -446,6 +485,9 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
         s,
         t,
         angle,
+        magnitudes: extras.as_deref().map_or(&[], |e| &e.magnitudes[..good]),
+        threshold: extras.as_deref().map_or(tspace::threshold_cosine(180.0), |e| e.threshold),
+        face_of: extras.as_deref().map(|e| e.face_of),
     };
     let starts = &groups.starts[..group_count + 1];
     // Each range's per-corner arrays begin with the triangle of its first good triangle.
@@ -464,9 +506,9 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
     let first_groups = core::iter::once(0).chain(group_ends.iter().copied());
     // Empty until a range spills: one range allocates nothing.
-    let mut spilled: [Vec<tspace::Spilled>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    let mut spilled: [Vec<tspace::Spilled<S>>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
     let mut outcomes: [Result<(), Error>; parallel::MAX_RANGES] = core::array::from_fn(|_| Ok(()));
-    let parts = parallel::split(&mut *b.tangents, triangle_ends, 3)
+    let parts = parallel::split(&mut *spaces, triangle_ends, 3)
         .zip(parallel::split(&mut *b.orientation, triangle_ends, 3))
         .zip(parallel::split(&mut *groups.faces, member_ends.ends(), 1))
         .zip(first_triangles.zip(ends.iter()))
@@ -475,11 +517,11 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     let (vertices, orientations) = (&*groups.vertex, &*groups.orientation);
     parallel::run_ranges(ends, parts, |first, parts| {
         let (
-            ((((tangents, orientation), faces), (first_triangle, &end)), (first_group, &end_group)),
+            ((((spaces, orientation), faces), (first_triangle, &end)), (first_group, &end_group)),
             (spilled, outcome),
         ) = parts;
         let mut out = tspace::Written {
-            tangents,
+            spaces,
             orientation,
             goods: first as u32..end as u32,
             first_triangle,
@@ -498,38 +540,52 @@ fn solve(attributes: &Attributes, threads: u32, b: &mut Buffers, report: &mut Re
     });
     outcomes.into_iter().collect::<Result<(), Error>>()?;
 
-    for &(corner, tangent, preserving) in spilled.iter().flatten() {
-        b.tangents[corner as usize] = tangent;
+    for &(corner, space, preserving) in spilled.iter().flatten() {
+        spaces[corner as usize] = space;
         b.orientation[corner as usize] = preserving;
     }
+    Ok(Solved {
+        path,
+        good,
+        welded_count,
+    })
+}
 
-    // 10. Degenerate triangles copy the first good corner of the same welded vertex
-    //     (DegenEpilogue).
-    if good == triangles {
-        return Ok(path);
+/// 10. Degenerate triangles copy the first good corner of the same welded vertex
+///     (DegenEpilogue): `spaces` and `orientation` hold what corner `c` gets at `slot_of(c)`;
+///     triangles `skip` names copy nothing.
+fn copy_to_degenerate<S: Copy>(
+    b: &mut Buffers,
+    solved: &Solved,
+    (spaces, orientation): (&mut [S], &mut [u8]),
+    slot_of: impl Fn(usize) -> usize,
+    skip: impl Fn(usize) -> bool,
+) {
+    let triangles = b.welded.len() / 3;
+    if solved.good == triangles {
+        return;
     }
-    let first_good = &mut b.table[..welded_count];
+    let (good, degenerate) = b.order[..triangles].split_at(solved.good);
+    let first_good = &mut b.table[..solved.welded_count];
     first_good.fill(NONE);
-    for &t in order {
-        for k in 0..3 {
-            let corner = 3 * t as usize + k;
+    for &t in good {
+        for corner in 3 * t as usize..3 * t as usize + 3 {
             let id = b.welded[corner] as usize;
             if first_good[id] == NONE {
                 first_good[id] = corner as u32;
             }
         }
     }
-    for &t in &b.order[good..] {
-        for k in 0..3 {
-            let corner = 3 * t as usize + k;
+    for &t in degenerate.iter().filter(|&&t| !skip(t as usize)) {
+        for corner in 3 * t as usize..3 * t as usize + 3 {
             let from = first_good[b.welded[corner] as usize];
             if from != NONE {
-                b.tangents[corner] = b.tangents[from as usize];
-                b.orientation[corner] = b.orientation[from as usize];
+                let (from, to) = (slot_of(from as usize), slot_of(corner));
+                spaces[to] = spaces[from];
+                orientation[to] = orientation[from];
             }
         }
     }
-    Ok(path)
 }
 
 /// Step 3 by value ([`value_weld`]): replaces each corner's vertex in `welded` by its welded

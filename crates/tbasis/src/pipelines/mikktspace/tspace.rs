@@ -11,11 +11,12 @@
 
 use super::faces::GROUP_WITH_ANY;
 use crate::kernel::error::Error;
-use crate::kernel::vector::{add, dot, normalize_if_not_zero, scale, Vec3};
+use crate::kernel::vector::{add, dot, equal, normalize_if_not_zero, scale, Vec3};
 
-/// Cosine of the default 180-degree angular threshold, as mikktspace.c computes it in float.
-fn threshold_cosine() -> f32 {
-    let angle = (180.0f32 * core::f32::consts::PI) / 180.0f32;
+/// Cosine of an angular threshold in degrees, as mikktspace.c computes it in float
+/// (`genTangSpace`): -1 for the default 180 degrees.
+pub(crate) fn threshold_cosine(degrees: f32) -> f32 {
+    let angle = (degrees * core::f32::consts::PI) / 180.0f32;
     f64::from(angle).cos() as f32
 }
 
@@ -32,93 +33,203 @@ pub(crate) struct Inputs<'a> {
     pub s: &'a [Vec3],
     pub t: &'a [Vec3],
     pub angle: &'a [f32],
+    /// Per good triangle: |dP/ds| and |dP/dt| over the texture area (read by [`Space::Full`]
+    /// sums only).
+    pub magnitudes: &'a [[f32; 2]],
+    /// The threshold's cosine ([`threshold_cosine`]).
+    pub threshold: f32,
+    /// Per triangle: the face it splits from (two triangles of a quad always share a sub-group);
+    /// `None`: every triangle is a face.
+    pub face_of: Option<&'a [u32]>,
 }
 
-/// A corner (its index), its tangent and its orientation, for another worker's range.
-pub(crate) type Spilled = (u32, Vec3, u8);
+/// What a corner's sub-group sum holds: the tangent alone, or all of `setTSpace`'s outputs.
+pub(crate) trait Space: Copy + Send + Sync {
+    /// The running sum over a sub-group's usable corners.
+    type Sum: Default;
+    /// Adds corner `c` (of good triangle `c / 3`), weighted by its angle (`EvalTspace`).
+    fn add(sum: &mut Self::Sum, inputs: &Inputs, c: usize);
+    /// The sub-group's space from its sum.
+    fn finish(sum: Self::Sum) -> Self;
+}
+
+impl Space for Vec3 {
+    type Sum = Vec3;
+    #[inline(always)]
+    fn add(sum: &mut Vec3, inputs: &Inputs, c: usize) {
+        *sum = add(*sum, scale(inputs.angle[c], inputs.s[c]));
+    }
+    #[inline(always)]
+    fn finish(sum: Vec3) -> Vec3 {
+        normalize_if_not_zero(sum)
+    }
+}
+
+/// `STSpace` without its orientation: unit tangent and bitangent, and the angle-weighted means of
+/// |dP/ds| and |dP/dt|.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Full {
+    pub s: Vec3,
+    pub t: Vec3,
+    pub mag_s: f32,
+    pub mag_t: f32,
+}
+
+impl Full {
+    /// What a corner no group reaches keeps (`genTangSpace`'s initial value).
+    pub const DEFAULT: Full = Full {
+        s: [1.0, 0.0, 0.0],
+        t: [0.0, 1.0, 0.0],
+        mag_s: 1.0,
+        mag_t: 1.0,
+    };
+
+    /// `AvgTSpace`: two triangles of a quad meet at this face vertex. Equal spaces stay as they
+    /// are (averaging would move their last bits).
+    pub fn average(self, other: Full) -> Full {
+        if self.mag_s == other.mag_s && self.mag_t == other.mag_t && equal(self.s, other.s) && equal(self.t, other.t) {
+            return self;
+        }
+        Full {
+            s: normalize_if_not_zero(add(self.s, other.s)),
+            t: normalize_if_not_zero(add(self.t, other.t)),
+            mag_s: 0.5 * (self.mag_s + other.mag_s),
+            mag_t: 0.5 * (self.mag_t + other.mag_t),
+        }
+    }
+}
+
+impl Space for Full {
+    /// The sums of angle * dP/ds, angle * dP/dt, angle * |dP/ds|, angle * |dP/dt| and angle.
+    type Sum = (Full, f32);
+    #[inline(always)]
+    fn add((sum, angles): &mut (Full, f32), inputs: &Inputs, c: usize) {
+        let angle = inputs.angle[c];
+        let [mag_s, mag_t] = inputs.magnitudes[c / 3];
+        sum.s = add(sum.s, scale(angle, inputs.s[c]));
+        sum.t = add(sum.t, scale(angle, inputs.t[c]));
+        sum.mag_s += angle * mag_s;
+        sum.mag_t += angle * mag_t;
+        *angles += angle;
+    }
+    #[inline(always)]
+    fn finish((sum, angles): (Full, f32)) -> Full {
+        let (mut mag_s, mut mag_t) = (sum.mag_s, sum.mag_t);
+        if angles > 0.0 {
+            mag_s /= angles;
+            mag_t /= angles;
+        }
+        Full {
+            s: normalize_if_not_zero(sum.s),
+            t: normalize_if_not_zero(sum.t),
+            mag_s,
+            mag_t,
+        }
+    }
+}
+
+impl Default for Full {
+    /// The zero sum.
+    fn default() -> Full {
+        Full {
+            s: [0.0; 3],
+            t: [0.0; 3],
+            mag_s: 0.0,
+            mag_t: 0.0,
+        }
+    }
+}
+
+/// A corner (its index), its space and its orientation, for another worker's range.
+pub(crate) type Spilled<S> = (u32, S, u8);
 
 /// Where one worker writes: the corners of the good triangles `goods`, its part of the per-corner
 /// arrays beginning with triangle `first_triangle`; the corners of its groups outside its range
 /// go to `spilled`, written once every worker is done.
-pub(crate) struct Written<'a> {
-    pub tangents: &'a mut [Vec3],
+pub(crate) struct Written<'a, S> {
+    pub spaces: &'a mut [S],
     pub orientation: &'a mut [u8],
     pub goods: core::ops::Range<u32>,
     pub first_triangle: usize,
-    pub spilled: &'a mut Vec<Spilled>,
+    pub spilled: &'a mut Vec<Spilled<S>>,
 }
 
-/// Writes the tangent and orientation of the corners of the group's triangles `faces` (in
+/// Writes the space and orientation of the corners of the group's triangles `faces` (in
 /// ascending order) around welded vertex `vertex`: those outside `out`'s range are spilled.
 /// Fails when memory for a spill or for the pairwise comparison cannot be had.
-pub(crate) fn evaluate_group(
+pub(crate) fn evaluate_group<S: Space>(
     inputs: &Inputs,
     faces: &[u32],
     vertex: u32,
     preserving: bool,
-    out: &mut Written,
+    out: &mut Written<S>,
 ) -> Result<(), Error> {
     let corner = |j: usize| {
         let f = faces[j] as usize;
         3 * f + inputs.ids[f].iter().position(|&id| id == vertex).unwrap_or(0)
     };
-    let (s, t, angle) = (inputs.s, inputs.t, inputs.angle);
+    let (s, t) = (inputs.s, inputs.t);
     let usable = |j: usize| inputs.flags[faces[j] as usize] & GROUP_WITH_ANY == 0;
-    let write = |j: usize, tangent: Vec3, out: &mut Written| -> Result<(), Error> {
+    let write = |j: usize, space: S, out: &mut Written<S>| -> Result<(), Error> {
         let (triangle, k) = (inputs.order[faces[j] as usize] as usize, corner(j) % 3);
         if out.goods.contains(&faces[j]) {
             let corner = 3 * (triangle - out.first_triangle) + k;
-            out.tangents[corner] = tangent;
+            out.spaces[corner] = space;
             out.orientation[corner] = u8::from(preserving);
         } else {
             out.spilled.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
-            out.spilled
-                .push(((3 * triangle + k) as u32, tangent, u8::from(preserving)));
+            out.spilled.push(((3 * triangle + k) as u32, space, u8::from(preserving)));
         }
         Ok(())
     };
     let count = faces.len();
 
     // The usual case in one pass: the whole group's sum, and whether its directions lie in one
-    // half-space (then it is every member's sub-group).
-    let (mut sum, mut half_s, mut half_t) = ([0.0; 3], HalfSpace::default(), HalfSpace::default());
+    // half-space (then, at 180 degrees, it is every member's sub-group).
+    let (mut sum, mut half_s, mut half_t) = (S::Sum::default(), HalfSpace::default(), HalfSpace::default());
     for j in (0..count).filter(|&j| usable(j)) {
         let c = corner(j);
         half_s.admit(s[c]);
         half_t.admit(t[c]);
-        sum = add(sum, scale(angle[c], s[c]));
+        S::add(&mut sum, inputs, c);
     }
-    if half_s.holds && half_t.holds {
-        let tangent = normalize_if_not_zero(sum);
+    if half_s.holds && half_t.holds && inputs.threshold <= -1.0 {
+        let space = S::finish(sum);
         for j in 0..count {
-            write(j, tangent, out)?;
+            write(j, space, out)?;
         }
         return Ok(());
     }
 
-    // Some directions may be exactly opposite: compare every pair, as mikktspace.c does.
-    let threshold = threshold_cosine();
-    let within = |terms: &[Vec3], j: usize, k: usize| dot(terms[corner(j)], terms[corner(k)]) > threshold;
-    let member = |j: usize, k: usize| !usable(j) || !usable(k) || j == k || (within(s, j, k) && within(t, j, k));
-    let mut subgroups: Vec<(Vec<usize>, Vec3)> = Vec::new();
+    // Some directions may lie past the threshold: compare every pair, as mikktspace.c does. Two
+    // triangles of one face, or one without a usable derivative, always share a sub-group.
+    let within = |terms: &[Vec3], j: usize, k: usize| dot(terms[corner(j)], terms[corner(k)]) > inputs.threshold;
+    let face = |j: usize| {
+        let triangle = inputs.order[faces[j] as usize];
+        inputs.face_of.map_or(triangle, |face_of| face_of[triangle as usize])
+    };
+    let member = |j: usize, k: usize| {
+        !usable(j) || !usable(k) || face(j) == face(k) || (within(s, j, k) && within(t, j, k))
+    };
+    let mut subgroups: Vec<(Vec<usize>, S)> = Vec::new();
     subgroups.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
     for j in 0..count {
         let mut own = Vec::new();
         own.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
         own.extend((0..count).filter(|&k| member(j, k)));
-        let tangent = match subgroups.iter().find(|(m, _)| *m == own) {
-            Some((_, tangent)) => *tangent,
+        let space = match subgroups.iter().find(|(m, _)| *m == own) {
+            Some((_, space)) => *space,
             None => {
-                let mut sum = [0.0; 3];
+                let mut sum = S::Sum::default();
                 for &k in own.iter().filter(|&&k| usable(k)) {
-                    sum = add(sum, scale(angle[corner(k)], s[corner(k)]));
+                    S::add(&mut sum, inputs, corner(k));
                 }
-                let tangent = normalize_if_not_zero(sum);
-                subgroups.push((own, tangent));
-                tangent
+                let space = S::finish(sum);
+                subgroups.push((own, space));
+                space
             }
         };
-        write(j, tangent, out)?;
+        write(j, space, out)?;
     }
     Ok(())
 }

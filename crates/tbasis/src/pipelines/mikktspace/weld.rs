@@ -80,6 +80,7 @@ pub(crate) fn weld(
     let filled = split_cells(attributes, threads, corner_count, &|c| vertices[c], None, &mut scratch);
     debug_assert_eq!(filled, Some(corner_count));
     let WeldScratch {
+        hashes,
         entries,
         representative,
         number,
@@ -90,6 +91,21 @@ pub(crate) fn weld(
     for &[corner, _, first] in entries.iter() {
         representative[corner as usize] = first;
     }
+    if attributes.corner_values.is_some() {
+        // A face vertex that two triangles share (on a quad's diagonal) is one index in
+        // mikktspace.c, welded or not (a `NaN`, a cell left unwelded): every representative
+        // stands for its vertex's first corner.
+        let first_of_vertex = &mut hashes[..];
+        first_of_vertex.fill(NONE);
+        for (c, &v) in corners.iter().enumerate() {
+            if first_of_vertex[v as usize] == NONE {
+                first_of_vertex[v as usize] = c as u32;
+            }
+        }
+        for r in representative.iter_mut() {
+            *r = first_of_vertex[corners[*r as usize] as usize];
+        }
+    }
     number.fill(NONE);
     let mut count = 0u32;
     for c in 0..corner_count {
@@ -98,18 +114,12 @@ pub(crate) fn weld(
             number[first] = count;
             // `first` has not been renumbered yet: either it is `c`, or it lies ahead.
             source[count as usize] = corners[first];
-            values[count as usize] = value_of(first);
+            values[count as usize] = attributes.value_of(first);
             count += 1;
         }
         corners[c] = number[first];
     }
     count as usize
-}
-
-/// mikktspace.c's index for corner `c`: `4 * face + corner` (`MakeIndex`).
-#[inline(always)]
-pub(crate) fn value_of(c: usize) -> u32 {
-    (4 * (c / 3) + c % 3) as u32
 }
 
 /// Cells of the grid holding a wanted vertex, and the most corners they may hold together.
@@ -579,6 +589,7 @@ mod tests {
         let attributes = Attributes {
             mesh: &mesh,
             flip_v: false,
+            corner_values: None,
         };
         let hashes: Vec<u32> = (0..4)
             .map(|v| hash_of(&attributes.key(v).map(canonical_bits)))

@@ -38,6 +38,7 @@ fn for_each_case(seed: u64, mut check: impl FnMut(usize, &Case, &Attributes)) {
         let attributes = Attributes {
             mesh: &mesh,
             flip_v: false,
+            corner_values: None,
         };
         check(round, &case, &attributes);
     }
