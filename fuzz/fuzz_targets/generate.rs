@@ -120,6 +120,9 @@ mod fault;
 #[rustfmt::skip]
 #[path = "../../src/codes.rs"]
 mod codes;
+#[allow(dead_code)]
+#[path = "../../crates/test-support/src/face_meshes.rs"]
+mod face_meshes;
 #[path = "generate/frames.rs"]
 mod frames;
 #[path = "generate/input.rs"]

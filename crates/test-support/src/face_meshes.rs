@@ -1,9 +1,12 @@
 //! Meshes as mikktspace.c's callback interface sees them: faces of any vertex count (3 and 4
 //! count, others are ignored), one position, normal and texture coordinate per face vertex; and
-//! every `setTSpace` call mikktspace.c makes for them, for comparing its drop-in bit for bit.
+//! every `setTSpace` call mikktspace.c makes for them, and `tbasis::mikktspace`'s, to compare
+//! bit for bit.
+//!
+//! It depends on nothing but `tbasis` and `mikktspace-sys`, so that the fuzz target includes it by
+//! path; the meshes to run it on are in `face_scenes`.
 
-use super::mikktspace_scenes::StressMesh;
-use super::scenes::Pcg32;
+use tbasis::mikktspace::{generate_tangents, generate_tangents_with, Geometry, Settings};
 
 /// Faces of `sizes[f]` vertices each, their attributes face after face.
 #[derive(Clone, Debug, Default)]
@@ -18,7 +21,7 @@ pub struct FaceMesh {
 }
 
 impl FaceMesh {
-    fn push_face(&mut self, vertices: impl IntoIterator<Item = ([f32; 3], [f32; 3], [f32; 2])>) {
+    pub fn push_face(&mut self, vertices: impl IntoIterator<Item = ([f32; 3], [f32; 3], [f32; 2])>) {
         self.starts.push(self.positions.len());
         let before = self.positions.len();
         for (p, n, t) in vertices {
@@ -29,13 +32,18 @@ impl FaceMesh {
         self.sizes.push(self.positions.len() - before);
     }
 
-    /// A triangle mesh's faces; with `quads`, each two triangles `(a, b, c)`, `(a, c, d)` in a row
-    /// become the quad `(a, b, c, d)`.
-    pub fn from_triangles(mesh: &StressMesh, quads: bool) -> FaceMesh {
-        let corners = mesh.corner_vertices();
-        let vertex = |v: usize| (mesh.positions[v], mesh.normals[v], mesh.texcoords[v]);
+    /// Faces from a triangle list (`corners` names each corner's vertex); with `quads`, each two
+    /// triangles `(a, b, c)`, `(a, c, d)` in a row become the quad `(a, b, c, d)`.
+    pub fn from_triangles(
+        name: String,
+        vertices: [&[[f32; 3]]; 2],
+        texcoords: &[[f32; 2]],
+        corners: &[usize],
+        quads: bool,
+    ) -> FaceMesh {
+        let vertex = |v: usize| (vertices[0][v], vertices[1][v], texcoords[v]);
         let mut out = FaceMesh {
-            name: format!("{}{}", mesh.name, if quads { " as quads" } else { "" }),
+            name: format!("{name}{}", if quads { " as quads" } else { "" }),
             ..FaceMesh::default()
         };
         let triangles: Vec<&[usize]> = corners.chunks_exact(3).collect();
@@ -52,67 +60,6 @@ impl FaceMesh {
                     t += 1;
                 }
             }
-        }
-        out
-    }
-
-    /// A grid of `cols` by `rows` quads over a bumpy sheet, with each quad's UVs stretched so that
-    /// either diagonal can be the shorter, some with tied UV diagonals, and mirrored columns.
-    pub fn quad_grid(seed: u64, cols: usize, rows: usize) -> FaceMesh {
-        let mut rng = Pcg32::new(seed, 27);
-        let mut out = FaceMesh {
-            name: format!("quad grid {cols}x{rows} (seed {seed})"),
-            ..FaceMesh::default()
-        };
-        let height = |i: usize, j: usize| ((i * 7 + j * 3) % 5) as f32 * 0.1;
-        let point = |i: usize, j: usize| [i as f32, j as f32, height(i, j)];
-        let normal = |i: usize, j: usize| {
-            let [x, y, z] = [height(i, j) - 0.2, 0.3 - height(j, i), 1.0];
-            let l = (x * x + y * y + z * z).sqrt();
-            [x / l, y / l, z / l]
-        };
-        for j in 0..rows {
-            for i in 0..cols {
-                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-                let stretch = match below(&mut rng, 3) {
-                    0 => 1.0,
-                    1 => 0.25,
-                    _ => 4.0,
-                };
-                let mirror = if i % 4 == 3 { -1.0 } else { 1.0 };
-                let uv = |(a, b): (usize, usize)| [mirror * a as f32 * 0.1 * stretch, b as f32 * 0.1];
-                out.push_face(corners.map(|(a, b)| (point(a, b), normal(a, b), uv((a, b)))));
-            }
-        }
-        out
-    }
-
-    /// Faces of 3, 4 and 5 vertices drawn from small pools of values, so that corners weld,
-    /// faces degenerate, UVs collapse and mirror, and zeros of both signs and NaN appear.
-    pub fn random_faces(seed: u64, faces: usize) -> FaceMesh {
-        let mut rng = Pcg32::new(seed, 27);
-        let mut out = FaceMesh {
-            name: format!("random faces (seed {seed})"),
-            ..FaceMesh::default()
-        };
-        let special = [0.0f32, -0.0, f32::NAN, 1.0, -1.0, 0.5];
-        let value = |rng: &mut Pcg32, spread: u32| -> f32 {
-            match below(rng, 40) {
-                0 => special[below(rng, special.len() as u32) as usize],
-                _ => below(rng, spread) as f32 * 0.25,
-            }
-        };
-        for _ in 0..faces {
-            let size = [3, 3, 4, 4, 4, 5][below(&mut rng, 6) as usize];
-            let vertices: Vec<_> = (0..size)
-                .map(|_| {
-                    let p = [value(&mut rng, 5), value(&mut rng, 5), value(&mut rng, 3)];
-                    let n = [[0.0, 0.0, 1.0], [0.0, 0.6, 0.8], [0.8, 0.0, 0.6], [0.0, -0.0, 1.0]][below(&mut rng, 4) as usize];
-                    let t = if below(&mut rng, 8) == 0 { [0.5, 0.5] } else { [value(&mut rng, 4), value(&mut rng, 4)] };
-                    (p, n, t)
-                })
-                .collect();
-            out.push_face(vertices);
         }
         out
     }
@@ -146,7 +93,15 @@ impl Call {
     }
 
     #[allow(clippy::too_many_arguments)]
-    pub fn new(tangent: [f32; 3], bitangent: [f32; 3], mag_s: f32, mag_t: f32, preserving: bool, face: usize, vert: usize) -> Call {
+    pub fn new(
+        tangent: [f32; 3],
+        bitangent: [f32; 3],
+        mag_s: f32,
+        mag_t: f32,
+        preserving: bool,
+        face: usize,
+        vert: usize,
+    ) -> Call {
         Call {
             face,
             vert,
@@ -190,7 +145,60 @@ pub fn mikktspace_c(mesh: &FaceMesh, angular_threshold: Option<f32>) -> (bool, V
     (ok, recorder.1)
 }
 
-/// Uniform in `0..n`.
-fn below(rng: &mut Pcg32, n: u32) -> u32 {
-    rng.next_u32() % n
+/// The drop-in's return value and `set_tangent` calls for `mesh`, through the trait as a user of
+/// the `mikktspace` crate implements it (`generate_tangents` when `angular_threshold` is `None`
+/// and `threads` 1).
+pub fn tbasis_calls(mesh: &FaceMesh, angular_threshold: Option<f32>, threads: u32) -> (bool, Vec<Call>) {
+    struct Recorder<'a>(&'a FaceMesh, Vec<Call>);
+    impl Geometry for Recorder<'_> {
+        fn num_faces(&self) -> usize {
+            self.0.sizes.len()
+        }
+        fn num_vertices_of_face(&self, face: usize) -> usize {
+            self.0.sizes[face]
+        }
+        fn position(&self, face: usize, vert: usize) -> [f32; 3] {
+            self.0.positions[self.0.starts[face] + vert]
+        }
+        fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
+            self.0.normals[self.0.starts[face] + vert]
+        }
+        fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
+            self.0.texcoords[self.0.starts[face] + vert]
+        }
+        fn set_tangent(&mut self, s: [f32; 3], t: [f32; 3], ms: f32, mt: f32, o: bool, face: usize, vert: usize) {
+            self.1.push(Call::new(s, t, ms, mt, o, face, vert));
+        }
+    }
+    // Room for every call: recording allocates nothing during the call.
+    let mut recorder = Recorder(mesh, Vec::with_capacity(mesh.positions.len()));
+    let ok = match angular_threshold {
+        None if threads == 1 => generate_tangents(&mut recorder),
+        _ => {
+            let angular_threshold = angular_threshold.unwrap_or(180.0);
+            generate_tangents_with(
+                &mut recorder,
+                &Settings {
+                    angular_threshold,
+                    threads,
+                },
+            )
+        }
+    };
+    (ok, recorder.1)
+}
+
+/// The first call in which `ours` and mikktspace.c's differ, described; `None` when they agree.
+pub fn first_difference(ours: &(bool, Vec<Call>), reference: &(bool, Vec<Call>)) -> Option<String> {
+    if ours.0 != reference.0 {
+        return Some(format!("returned {}, mikktspace.c {}", ours.0, reference.0));
+    }
+    if ours.1.len() != reference.1.len() {
+        return Some(format!("{} calls, mikktspace.c {}", ours.1.len(), reference.1.len()));
+    }
+    let i = (0..ours.1.len()).find(|&i| !ours.1[i].matches(&reference.1[i]))?;
+    Some(format!(
+        "call {i} differs:\n  tbasis {:?}\n  mikktspace.c {:?}",
+        ours.1[i], reference.1[i]
+    ))
 }

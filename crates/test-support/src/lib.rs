@@ -5,6 +5,7 @@
 pub mod alloc_count;
 pub mod cases;
 pub mod face_meshes;
+pub mod face_scenes;
 pub mod invariants;
 pub mod load;
 pub mod mikktspace_reference;

@@ -10,6 +10,7 @@ use crate::ffi::tbasis_report;
 use tbasis::{generate, generate_corners, DegeneratePolicy, Options, Output, StridedMut};
 
 use crate::call::describe_report;
+use crate::face_meshes::{first_difference, mikktspace_c, tbasis_calls, FaceMesh};
 use crate::frames::{check_robust_tangent, dot, length, same_frame, show, unit};
 use crate::packed::Packed;
 
@@ -264,6 +265,7 @@ pub fn check(mesh: &Packed, threads: &[u32]) {
     if mesh.texcoords.is_none() {
         return;
     }
+    check_face_interface(mesh, threads);
     let bits = |frames: &[[f32; 4]]| frames.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
     for flip_v in [false, true] {
         let mut first: Option<(Vec<[f32; 4]>, tbasis_report)> = None;
@@ -298,5 +300,27 @@ pub fn check(mesh: &Packed, threads: &[u32]) {
             describe_report(&expected),
             "generate, {options:?}: the report is not generate_corners' with the unused vertices as fallbacks"
         );
+    }
+}
+
+/// `tbasis::mikktspace` (mikktspace.c's callback interface) against mikktspace.c on the mesh's
+/// triangles as faces at the default threshold, and on them paired into quads (`(a, b, c)`,
+/// `(a, c, d)` in a row) at 90 degrees: the same return value and `setTSpace` calls, a NaN
+/// matching any NaN.
+fn check_face_interface(mesh: &Packed, threads: &[u32]) {
+    let (Some(texcoords), Some(_)) = (mesh.texcoords.as_deref(), mesh.reference(false)) else {
+        return;
+    };
+    let corners: Vec<usize> = (0..mesh.corner_count()).map(|c| mesh.corner_vertex(c)).collect();
+    for (quads, threshold) in [(false, None), (true, Some(90.0))] {
+        let vertices = [&mesh.positions[..], &mesh.normals[..]];
+        let faces = FaceMesh::from_triangles(String::new(), vertices, texcoords, &corners, quads);
+        let reference = mikktspace_c(&faces, threshold);
+        for &threads in threads {
+            let ours = tbasis_calls(&faces, threshold, threads);
+            if let Some(difference) = first_difference(&ours, &reference) {
+                mismatch(mesh, &Options::mikktspace(), format!("faces, quads {quads}, {threads} threads: {difference}"));
+            }
+        }
     }
 }

@@ -122,11 +122,24 @@ pub fn generate_tangents_with<I: Geometry>(geometry: &mut I, settings: &Settings
     let Ok(out) = faces_interface::solve(&mesh, settings.angular_threshold, threads) else {
         return false;
     };
-    let slot_ends = read.faces.iter().skip(1).map(|&(_, first)| first as usize).chain([out.spaces.len()]);
+    let slot_ends = read
+        .faces
+        .iter()
+        .skip(1)
+        .map(|&(_, first)| first as usize)
+        .chain([out.spaces.len()]);
     for (&(face, first), end) in read.faces.iter().zip(slot_ends) {
         for (vert, slot) in (first as usize..end).enumerate() {
             let (space, preserving) = (&out.spaces[slot], out.preserving[slot] != 0);
-            geometry.set_tangent(space.s, space.t, space.mag_s, space.mag_t, preserving, face as usize, vert);
+            geometry.set_tangent(
+                space.s,
+                space.t,
+                space.mag_s,
+                space.mag_t,
+                preserving,
+                face as usize,
+                vert,
+            );
         }
     }
     true
@@ -167,7 +180,12 @@ fn read<I: Geometry>(geometry: &I) -> Result<Read, Error> {
         texcoords: try_with_capacity(slots)?,
         faces,
     };
-    let slot_ends = read.faces.iter().skip(1).map(|&(_, first)| first as usize).chain([slots]);
+    let slot_ends = read
+        .faces
+        .iter()
+        .skip(1)
+        .map(|&(_, first)| first as usize)
+        .chain([slots]);
     for (&(face, first), end) in read.faces.iter().zip(slot_ends) {
         for vert in 0..end - first as usize {
             read.positions.push(geometry.position(face as usize, vert));

@@ -61,7 +61,9 @@ pub(crate) fn derivatives(
                 .zip(tangent_t.chunks_mut(LANES))
                 .zip(flags.chunks_mut(LANES));
             for (batch, (order, ((s, t), flags))) in order.chunks(LANES).zip(outputs).enumerate() {
-                let magnitudes = magnitudes.as_deref_mut().map(|m| &mut m[batch * LANES..][..order.len()]);
+                let magnitudes = magnitudes
+                    .as_deref_mut()
+                    .map(|m| &mut m[batch * LANES..][..order.len()]);
                 derivatives_batch(attributes, welded, order, [s, t], flags, magnitudes);
             }
         },

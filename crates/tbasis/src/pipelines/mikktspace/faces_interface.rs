@@ -8,6 +8,8 @@
 //! both write (averaged, `AvgTSpace`), or that its degenerate triangle leaves to its good one.
 #![forbid(unsafe_code)]
 
+use core::cmp::Ordering;
+
 use super::attributes::Attributes;
 use super::tspace::{threshold_cosine, Full};
 use super::{copy_to_degenerate, scratch_bytes, solve as solve_triangles, Buffers, FaceExtras, NONE};
@@ -68,30 +70,29 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
         threshold: threshold_cosine(angular_threshold),
     };
     let mut report = Report::default();
-    let solved = solve_triangles(&attributes, threads, &mut buffers, &mut corners, Some(&mut extras), &mut report)?;
+    let solved = solve_triangles(
+        &attributes,
+        threads,
+        &mut buffers,
+        &mut corners,
+        Some(&mut extras),
+        &mut report,
+    )?;
 
     // 3. Each slot takes its corner's space, or both corners' average where the two triangles
     //    of a quad meet, with the orientation of the later group (GenerateTSpaces, AvgTSpace).
-    let mut out = Spaces {
-        spaces: filled(slot_count, Full::DEFAULT)?,
-        preserving: filled(slot_count, 0u8)?,
-    };
-    let mut writer: Vec<u32> = filled(slot_count, NONE)?;
-    for (&t, groups) in buffers.order[..solved.good].iter().zip(&*buffers.assigned) {
-        for (k, &group) in groups.iter().enumerate().filter(|&(_, &g)| g != NONE) {
-            let corner = 3 * t as usize + k;
-            let slot = triangles.slots[corner] as usize;
-            let (space, preserving) = (corners[corner], buffers.orientation[corner]);
-            if writer[slot] == NONE {
-                out.spaces[slot] = space;
-            } else {
-                out.spaces[slot] = out.spaces[slot].average(space);
-            }
-            if writer[slot] == NONE || group >= writer[slot] {
-                (writer[slot], out.preserving[slot]) = (group, preserving);
-            }
+    //    Without quads, slots are corners: those no group reaches keep the initial space and
+    //    orientation 0 (the scratch starts zeroed).
+    let mut out = if slot_count == corner_count {
+        let mut preserving = with_capacity(slot_count)?;
+        preserving.extend_from_slice(buffers.orientation);
+        Spaces {
+            spaces: corners,
+            preserving,
         }
-    }
+    } else {
+        assemble_slots(&triangles, &buffers, solved.good, &corners, slot_count)?
+    };
 
     // 4. Degenerate triangles copy a good corner's space (DegenEpilogue), except in a quad whose
     //    other triangle is good: there the slot the good one lacks copies the one of its slots
@@ -114,7 +115,10 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
         slot_of,
         one_degenerate,
     );
-    for &t in buffers.order[..solved.good].iter().filter(|&&t| one_degenerate(t as usize)) {
+    for &t in buffers.order[..solved.good]
+        .iter()
+        .filter(|&&t| one_degenerate(t as usize))
+    {
         let corners = 3 * t as usize..3 * t as usize + 3;
         let verts = [0, 1, 2].map(|k| (triangles.values[corners.start + k] % 4) as usize);
         let present = verts.iter().fold(0u32, |bits, &v| bits | 1 << v);
@@ -125,6 +129,37 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
             let (from, to) = (first_slot + v, first_slot + missing);
             out.spaces[to] = out.spaces[from];
             out.preserving[to] = out.preserving[from];
+        }
+    }
+    Ok(out)
+}
+
+/// Step 3 with quads: each slot from the one or two corners on it that a group reached.
+fn assemble_slots(
+    triangles: &Triangles,
+    buffers: &Buffers,
+    good: usize,
+    corners: &[Full],
+    slot_count: usize,
+) -> Result<Spaces, Error> {
+    let mut out = Spaces {
+        spaces: filled(slot_count, Full::DEFAULT)?,
+        preserving: filled(slot_count, 0u8)?,
+    };
+    let mut writer: Vec<u32> = filled(slot_count, NONE)?;
+    for (&t, groups) in buffers.order[..good].iter().zip(&*buffers.assigned) {
+        for (k, &group) in groups.iter().enumerate().filter(|&(_, &g)| g != NONE) {
+            let corner = 3 * t as usize + k;
+            let slot = triangles.slots[corner] as usize;
+            let (space, preserving) = (corners[corner], buffers.orientation[corner]);
+            if writer[slot] == NONE {
+                out.spaces[slot] = space;
+            } else {
+                out.spaces[slot] = out.spaces[slot].average(space);
+            }
+            if writer[slot] == NONE || group >= writer[slot] {
+                (writer[slot], out.preserving[slot]) = (group, preserving);
+            }
         }
     }
     Ok(out)
@@ -143,8 +178,18 @@ impl Triangles {
     /// are equal (the 0-2 diagonal unless 1-3 is strictly shorter), as mikktspace.c does.
     fn split(mesh: &FaceMesh) -> Result<Triangles, Error> {
         let slot_count = mesh.positions.len();
-        let ends = mesh.faces.iter().skip(1).map(|&(_, first)| first as usize).chain([slot_count]);
-        let triangle_count: usize = mesh.faces.iter().zip(ends.clone()).map(|(&(_, first), end)| end - first as usize - 2).sum();
+        let ends = mesh
+            .faces
+            .iter()
+            .skip(1)
+            .map(|&(_, first)| first as usize)
+            .chain([slot_count]);
+        let triangle_count: usize = mesh
+            .faces
+            .iter()
+            .zip(ends.clone())
+            .map(|(&(_, first), end)| end - first as usize - 2)
+            .sum();
         let mut triangles = Triangles {
             slots: with_capacity(3 * triangle_count)?,
             values: with_capacity(3 * triangle_count)?,
@@ -164,13 +209,12 @@ impl Triangles {
                 &[[0, 1, 2]]
             } else {
                 let (texture_02, texture_13) = (squared(uv(0), uv(2)), squared(uv(1), uv(3)));
-                let diagonal_02 = if texture_02 < texture_13 {
-                    true
-                } else if texture_13 < texture_02 {
-                    false
-                } else {
-                    let p = |vert: usize| mesh.positions[slot(vert)];
-                    !(squared(p(1), p(3)) < squared(p(0), p(2)))
+                let p = |vert: usize| mesh.positions[slot(vert)];
+                // A tie, or a NaN, goes to the positions; there 1-3 must be strictly shorter.
+                let diagonal_02 = match texture_02.partial_cmp(&texture_13) {
+                    Some(Ordering::Less) => true,
+                    Some(Ordering::Greater) => false,
+                    _ => squared(p(1), p(3)).partial_cmp(&squared(p(0), p(2))) != Some(Ordering::Less),
                 };
                 if diagonal_02 {
                     &[[0, 1, 2], [0, 2, 3]]

@@ -486,7 +486,9 @@ fn solve<S: tspace::Space>(
         t,
         angle,
         magnitudes: extras.as_deref().map_or(&[], |e| &e.magnitudes[..good]),
-        threshold: extras.as_deref().map_or(tspace::threshold_cosine(180.0), |e| e.threshold),
+        threshold: extras
+            .as_deref()
+            .map_or(tspace::threshold_cosine(180.0), |e| e.threshold),
         face_of: extras.as_deref().map(|e| e.face_of),
     };
     let starts = &groups.starts[..group_count + 1];
@@ -516,10 +518,8 @@ fn solve<S: tspace::Space>(
         .zip(spilled.iter_mut().zip(outcomes.iter_mut()));
     let (vertices, orientations) = (&*groups.vertex, &*groups.orientation);
     parallel::run_ranges(ends, parts, |first, parts| {
-        let (
-            ((((spaces, orientation), faces), (first_triangle, &end)), (first_group, &end_group)),
-            (spilled, outcome),
-        ) = parts;
+        let (((((spaces, orientation), faces), (first_triangle, &end)), (first_group, &end_group)), (spilled, outcome)) =
+            parts;
         let mut out = tspace::Written {
             spaces,
             orientation,

@@ -178,7 +178,8 @@ pub(crate) fn evaluate_group<S: Space>(
             out.orientation[corner] = u8::from(preserving);
         } else {
             out.spilled.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
-            out.spilled.push(((3 * triangle + k) as u32, space, u8::from(preserving)));
+            out.spilled
+                .push(((3 * triangle + k) as u32, space, u8::from(preserving)));
         }
         Ok(())
     };
@@ -208,9 +209,8 @@ pub(crate) fn evaluate_group<S: Space>(
         let triangle = inputs.order[faces[j] as usize];
         inputs.face_of.map_or(triangle, |face_of| face_of[triangle as usize])
     };
-    let member = |j: usize, k: usize| {
-        !usable(j) || !usable(k) || face(j) == face(k) || (within(s, j, k) && within(t, j, k))
-    };
+    let member =
+        |j: usize, k: usize| !usable(j) || !usable(k) || face(j) == face(k) || (within(s, j, k) && within(t, j, k));
     let mut subgroups: Vec<(Vec<usize>, S)> = Vec::new();
     subgroups.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
     for j in 0..count {
