@@ -23,10 +23,12 @@
 //! linked by `build.rs`) and as a share of the bandwidth limit: the time the bytes a per-vertex
 //! method must touch take at the read bandwidth measured at the start of the run.
 //!
-//! Method MIKKTSPACE runs per corner (`generate_corners`), against mikktspace.c through the
+//! Method MIKKTSPACE runs per corner (`generate_corners`), and through mikktspace.c's callback
+//! interface (`tbasis::mikktspace::generate_tangents`, whose callbacks read the same arrays as
+//! mikktspace.c's), against mikktspace.c through the
 //! wrapper the tests use (`crates/test-support/src/mikktspace_reference.rs`, reading the mesh through its
 //! index buffer, V up as the C port gets it). Before any timing, each scene's corners from both,
-//! with one and two threads, must agree bit for bit (a NaN matching any NaN), or the run stops.
+//! with one and two threads and through the callbacks, must agree bit for bit (a NaN matching any NaN), or the run stops.
 //! mikktspace.c takes seconds per call on the large scenes: it is timed in only
 //! [`SLOW_SAMPLES`] of the rounds. meshoptimizer's `meshopt_generateTangents` runs per corner too,
 //! in its MikkTSpace-compatible mode and its default one, with the same V-up coordinates, reading
@@ -53,6 +55,7 @@ use machine::{load_average, machine};
 use meshopt::TangentOptions;
 use meshopt_tangents::meshopt_tangents;
 use mikktspace_reference::Geometry;
+use tbasis::mikktspace::generate_tangents;
 use tbasis::{
     generate, generate_corners, generate_corners_with_scratch, generate_with_scratch, scratch_size_for,
     DegeneratePolicy, Error, Indices, Mesh, Method, Options, Output, Report, Strided, StridedMut,
@@ -123,6 +126,16 @@ impl Part {
     /// Triangle corners: one per index.
     fn corners(&self) -> usize {
         self.indices.len()
+    }
+
+    /// The part as mikktspace.c's callbacks read it: through the index buffer, V up.
+    fn geometry(&self) -> Geometry<'_> {
+        Geometry {
+            positions: &self.positions,
+            normals: &self.normals,
+            texcoords: &self.listing_texcoords,
+            indices: Some(&self.indices),
+        }
     }
 
     /// The part as the library reads it.
@@ -309,6 +322,9 @@ enum Generator {
     MikktspaceC,
     /// meshoptimizer's `meshopt_generateTangents`, one frame per corner, with those coordinates too.
     Meshopt(TangentOptions),
+    /// `tbasis::mikktspace::generate_tangents`, mikktspace.c's callback interface: the same
+    /// callbacks as [`Generator::MikktspaceC`]'s, reading the same arrays.
+    Callbacks,
 }
 
 impl Generator {
@@ -330,7 +346,7 @@ impl Generator {
     fn per_corner(&self) -> bool {
         match self {
             Generator::Library(call) => call.corners,
-            Generator::MikktspaceC | Generator::Meshopt(_) => true,
+            Generator::MikktspaceC | Generator::Meshopt(_) | Generator::Callbacks => true,
             Generator::Listing => false,
         }
     }
@@ -338,7 +354,7 @@ impl Generator {
     fn threads(&self) -> usize {
         match self {
             Generator::Library(call) => call.options.threads.max(1) as usize,
-            Generator::Listing | Generator::MikktspaceC | Generator::Meshopt(_) => 1,
+            Generator::Listing | Generator::MikktspaceC | Generator::Meshopt(_) | Generator::Callbacks => 1,
         }
     }
 }
@@ -471,11 +487,18 @@ fn configs() -> Vec<Config> {
         });
     }
     configs.push(Config {
+        name: CALLBACKS.to_string(),
+        generator: Generator::Callbacks,
+    });
+    configs.push(Config {
         name: MIKKTSPACE_C.to_string(),
         generator: Generator::MikktspaceC,
     });
     configs
 }
+
+/// The name of the callback interface's configuration.
+const CALLBACKS: &str = "tbasis::mikktspace callbacks per corner";
 
 /// The name of mikktspace.c's configuration.
 const MIKKTSPACE_C: &str = "mikktspace.c per corner";
@@ -549,16 +572,14 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
                     };
                 }
                 Generator::MikktspaceC => {
-                    let geometry = Geometry {
-                        positions: &part.positions,
-                        normals: &part.normals,
-                        texcoords: &part.listing_texcoords,
-                        indices: Some(&part.indices),
-                    };
                     assert!(
-                        black_box(mikktspace_reference::generate(geometry, tangents)),
+                        black_box(mikktspace_reference::generate(part.geometry(), tangents)),
                         "mikktspace.c failed"
                     );
+                }
+                Generator::Callbacks => {
+                    let mut callbacks = Callbacks(part.geometry(), tangents);
+                    assert!(black_box(generate_tangents(&mut callbacks)), "generate_tangents failed");
                 }
                 Generator::Meshopt(options) => {
                     // SAFETY: load.rs and scenes.rs keep every index below the vertex count.
@@ -601,6 +622,39 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
         black_box(&mut *outputs);
     }
     (start.elapsed(), refused)
+}
+
+/// mikktspace.c's callbacks in Rust, as [`mikktspace_reference`]'s wrapper implements them: each
+/// face a triangle read through the index buffer, each tangent stored per corner.
+struct Callbacks<'a>(Geometry<'a>, &'a mut [[f32; 4]]);
+
+impl tbasis::mikktspace::Geometry for Callbacks<'_> {
+    fn num_faces(&self) -> usize {
+        self.0.corner_count() / 3
+    }
+    fn num_vertices_of_face(&self, _face: usize) -> usize {
+        3
+    }
+    fn position(&self, face: usize, vert: usize) -> [f32; 3] {
+        self.0.positions[self.vertex(face, vert)]
+    }
+    fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
+        self.0.normals[self.vertex(face, vert)]
+    }
+    fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
+        self.0.texcoords[self.vertex(face, vert)]
+    }
+    fn set_tangent_encoded(&mut self, tangent: [f32; 4], face: usize, vert: usize) {
+        self.1[3 * face + vert] = tangent;
+    }
+}
+
+impl Callbacks<'_> {
+    fn vertex(&self, face: usize, vert: usize) -> usize {
+        self.0
+            .indices
+            .map_or(3 * face + vert, |indices| indices[3 * face + vert] as usize)
+    }
 }
 
 /// What one configuration measured on one scene.
@@ -696,13 +750,17 @@ fn same_frame(a: [f32; 4], b: [f32; 4]) -> bool {
 fn check_mikktspace(scene: &Scene) -> usize {
     let mut reference = Outputs::of(scene);
     run(Generator::MikktspaceC, scene, &mut reference, 1);
-    for threads in [1, 2] {
+    for (name, generator) in [
+        (mikktspace_name(1, false), mikktspace(1, false)),
+        (mikktspace_name(2, false), mikktspace(2, false)),
+        (CALLBACKS.to_string(), Generator::Callbacks),
+    ] {
         let mut ours = Outputs::of(scene);
-        run(mikktspace(threads, false), scene, &mut ours, 1);
+        run(generator, scene, &mut ours, 1);
         for (p, (mine, theirs)) in ours.corners.iter().zip(&reference.corners).enumerate() {
             if let Some(c) = (0..mine.len()).find(|&c| !same_frame(mine[c], theirs[c])) {
                 panic!(
-                    "{}, part {p}, corner {c}: MIKKTSPACE with threads={threads} gives {:?}, mikktspace.c {:?}",
+                    "{}, part {p}, corner {c}: {name} gives {:?}, mikktspace.c {:?}",
                     scene.name, mine[c], theirs[c]
                 );
             }
@@ -1177,6 +1235,18 @@ fn goals(results: &[SceneResult], configs: &[Config]) -> String {
             find(configs, MESHOPT_COMPATIBLE),
             mikktspace,
             Bound::Above(1.0),
+        ),
+        goal(
+            format!("{CALLBACKS} at least 10x faster than mikktspace.c, one thread"),
+            find(configs, MIKKTSPACE_C),
+            find(configs, CALLBACKS),
+            Bound::AtLeast(10.0),
+        ),
+        goal(
+            format!("{CALLBACKS} at most 1.3x MIKKTSPACE per corner's time, one thread"),
+            find(configs, CALLBACKS),
+            mikktspace,
+            Bound::AtMost(1.3),
         ),
     ];
     for (name, one) in [
