@@ -6,10 +6,14 @@
 #   bash .ci/fuzz.sh [SECONDS]    # default 60, in all
 #
 # Exits non-zero on any crash, sanitizer report, timeout or build failure, and prints libFuzzer's
-# final stats line per target. The corpora grow in fuzz/corpus/TARGET (not tracked); the inputs in
-# fuzz/regressions (generate) and the glTF tool's seeds (written into fuzz/corpus/gltf_tool_seeds by
-# tools/gltf/examples/fuzz_seeds.rs, when absent) are replayed first and then seed the run.
-# The seed is fixed (FUZZ_SEED to change it); a run repeats exactly only from the same corpus.
+# final stats line per target. First, each past finding of `generate` (fuzz/regressions/NAME) runs
+# alone through the sanitized target, which must pass it and must decode it to its case,
+# fuzz/regression_cases/NAME.txt (FUZZ_DESCRIBE=1 prints what it decoded; the inputs are written
+# from their cases by `cargo run --manifest-path fuzz/Cargo.toml --example regressions`). The
+# corpora grow in fuzz/corpus/TARGET (not tracked); the regressions and the glTF tool's seeds
+# (written into fuzz/corpus/gltf_tool_seeds by tools/gltf/examples/fuzz_seeds.rs, when absent) are
+# replayed first and then seed the run. The seed is fixed (FUZZ_SEED to change it); a run repeats
+# exactly only from the same corpus.
 # To read a failure: FUZZ_DEBUG=1 fuzz/target/x86_64-unknown-linux-gnu/release/TARGET INPUT
 set -euo pipefail
 
@@ -22,10 +26,14 @@ if ! cargo fuzz --version >/dev/null 2>&1; then
     cargo install cargo-fuzz --locked
 fi
 
-# cargo-fuzz passes nightly-only flags (-Zsanitizer=address). Use a nightly toolchain when one is
-# installed; otherwise let the stable compiler accept those flags with RUSTC_BOOTSTRAP=1.
+# cargo-fuzz passes nightly-only flags (-Zsanitizer=address): a nightly toolchain, installed with
+# rustup when missing. Without rustup, the stable compiler accepts those flags with
+# RUSTC_BOOTSTRAP=1.
 toolchain="${FUZZ_TOOLCHAIN:-}"
 if [[ -z "$toolchain" ]]; then
+    if ! rustup toolchain list 2>/dev/null | grep -q '^nightly' && command -v rustup >/dev/null 2>&1; then
+        rustup toolchain install nightly --profile minimal
+    fi
     if rustup toolchain list 2>/dev/null | grep -q '^nightly'; then
         toolchain=nightly
     else
@@ -70,7 +78,53 @@ fuzz() {
     echo "fuzz: $target: no crash in ${seconds}s"
 }
 
-# Known crashers and past findings of the C ABI (fuzz/regressions), and the glTF tool's seeds.
+# The past findings of the C ABI: each input alone, through the sanitized target, which must pass it
+# and decode it to its case.
+replay_regressions() {
+    cargo "+$toolchain" fuzz build generate >"$log" 2>&1 || {
+        cat "$log"
+        echo "fuzz: generate does not build" >&2
+        exit 1
+    }
+    local binary="target/x86_64-unknown-linux-gnu/release/generate" failed=0 count=0 input name
+    shopt -s nullglob
+    for input in regressions/*; do
+        name="$(basename "$input")"
+        [[ -f "regression_cases/$name.txt" ]] || {
+            echo "fuzz: regressions/$name has no case in regression_cases/" >&2
+            failed=1
+        }
+    done
+    for case in regression_cases/*.txt; do
+        name="$(basename "$case" .txt)"
+        input="regressions/$name"
+        count=$((count + 1))
+        if [[ ! -f "$input" ]]; then
+            echo "fuzz: $case has no input $input" >&2
+            failed=1
+            continue
+        fi
+        if ! FUZZ_DESCRIBE=1 "$binary" "$input" >"$log" 2>&1; then
+            tail -n 60 "$log"
+            echo "fuzz: generate fails on $input" >&2
+            failed=1
+            continue
+        fi
+        # libFuzzer may run an input twice (the second time to look for a leak): the first run's.
+        if ! diff <(awk '/^generate counts/ { n++ } n == 1 && /^(generate|listing|corners) /' "$log") \
+            <(grep -vE '^(#|hint )' "$case") >"$log.diff"; then
+            head -n 20 "$log.diff"
+            echo "fuzz: $input no longer decodes to $case (rewrite it: cargo run --manifest-path fuzz/Cargo.toml --example regressions)" >&2
+            failed=1
+        fi
+    done
+    rm -f "$log.diff"
+    ((failed == 0)) || exit 1
+    echo "fuzz: generate: $count regressions pass and decode to their cases"
+}
+replay_regressions
+
+# Past findings of the C ABI (fuzz/regressions), and the glTF tool's seeds.
 fuzz generate "$((seconds - seconds / 3))" regressions
 if [ ! -e corpus/gltf_tool_seeds/quad.glb ]; then
     (cd "$root" && cargo run --quiet -p tbasis-gltf --example fuzz_seeds -- fuzz/corpus/gltf_tool_seeds)

@@ -34,7 +34,10 @@ pub const TBASIS_ERROR_SIZE_OVERFLOW: tbasis_status = 9;
 pub const TBASIS_ERROR_OVERLAP: tbasis_status = 10;
 /// Policy REJECT found a degenerate triangle; `report->first_degenerate_triangle` names it.
 pub const TBASIS_ERROR_DEGENERATE_UV: tbasis_status = 11;
-/// Allocating the scratch failed.
+/// An allocation failed: the working memory the call allocates when `options->scratch` is NULL,
+/// or one of the smaller ones some calls make (on several threads, or a seam split's lists).
+/// Nothing was written. Only the standard library's own bookkeeping to start a worker thread
+/// (`threads` > 1: a few dozen bytes per thread) cannot fail softly: the process ends there.
 pub const TBASIS_ERROR_OUT_OF_MEMORY: tbasis_status = 12;
 /// `options->scratch` is not NULL and `options->scratch_size` is below `tbasis_scratch_size`.
 pub const TBASIS_ERROR_SCRATCH_TOO_SMALL: tbasis_status = 13;
@@ -45,7 +48,8 @@ pub const TBASIS_ERROR_INVALID_COUNT: tbasis_status = 15;
 /// A bug in the library (a panic) was caught at the boundary. Unlike every other error, it may
 /// come after writing began: the outputs (and the scratch) may hold any mix of their old bytes
 /// and new values, element by element, and must not be used; only the transforms' `result` is
-/// certainly unwritten. `*report` is left unchanged.
+/// certainly unwritten. With `threads` > 1 the same: every worker thread of the call has ended
+/// when it returns, so nothing is written afterwards. `*report` is left unchanged.
 pub const TBASIS_ERROR_INTERNAL: tbasis_status = 16;
 /// `tbasis_to_tangent_space` or `tbasis_from_tangent_space`: an input is NaN or infinite, the
 /// frame is singular (`normal` or the tangent zero, `w` zero, or the two parallel), or a result

@@ -1,7 +1,8 @@
 //! The C entry points with caller scratch (and one thread) make no heap allocation at all, counted
 //! on the calling thread like the Rust API's calls in `crates/tbasis/tests/allocation.rs`, which
 //! also proves the counter; without caller scratch, each allocation a call makes may fail, and the
-//! call then returns `TBASIS_ERROR_OUT_OF_MEMORY` with its outputs untouched.
+//! call then returns `TBASIS_ERROR_OUT_OF_MEMORY` with its outputs untouched (on one thread;
+//! `tests/allocation_threads.rs` does the same on one and two threads, on larger meshes).
 
 // The C boundary's own source, compiled in to count what it allocates (the C library has no Rust
 // interface).

@@ -79,11 +79,15 @@
 //! changes nothing.
 //!
 //! `FUZZ_DEBUG=1` prints the decoded calls, the mesh and the reports of each input run; a
-//! mismatch against mikktspace.c prints the mesh, bits included.
+//! mismatch against mikktspace.c prints the mesh, bits included. `FUZZ_DESCRIBE=1` prints what
+//! each input decodes to, every value included (`generate/describe.rs`).
 //!
-//! `fuzz/regressions/` holds the inputs of past findings (replayed by `.ci/fuzz.sh`), all fixed.
-//! They were made for the byte format this target read before it used `arbitrary`; they no longer
-//! rebuild the cases below and are ordinary seeds now (each must still pass):
+//! `fuzz/regressions/` holds the inputs of past findings, all fixed: `.ci/fuzz.sh` runs each alone
+//! and checks that it still decodes to its case, `fuzz/regression_cases/NAME.txt` (`FUZZ_DESCRIBE=1`
+//! prints what an input decodes to: `generate/describe.rs`). They were found in the byte format
+//! this target read before it used `arbitrary`; each case is what that format's decoder read from
+//! the old input, and `fuzz/examples/regressions.rs` writes each input in the current format from
+//! its case. The named ones:
 //! - `empty-mesh-unaligned-scratch`: no vertices, a non-NULL 0-byte scratch at an address 1 mod 4
 //!   was refused with SCRATCH_TOO_SMALL;
 //! - `tangent-not-orthogonal-near-normal`: a tangent sum nearly along the normal left the tangent
@@ -97,6 +101,9 @@
 //! - `mikktspace-reject-report`: method MIKKTSPACE with policy REJECT filled only the degenerate
 //!   counts of the report it returns with DEGENERATE_UV (`abnormal_normals` 0 with 4 abnormal
 //!   normals).
+//!
+//! The other 134, named by their hash as libFuzzer names what it finds, came without a note; the
+//! comment of each case says which calls it makes.
 #![no_main]
 
 #[path = "generate/arena.rs"]
@@ -120,6 +127,8 @@ mod fault;
 #[rustfmt::skip]
 #[path = "../../src/codes.rs"]
 mod codes;
+#[path = "generate/describe.rs"]
+mod describe;
 #[allow(dead_code)]
 #[path = "../../crates/test-support/src/face_meshes.rs"]
 mod face_meshes;
@@ -144,6 +153,8 @@ mod outputs;
 mod packed;
 #[path = "generate/plan.rs"]
 mod plan;
+#[path = "generate/run.rs"]
+mod run;
 #[path = "generate/rust_api.rs"]
 mod rust_api;
 #[path = "generate/split.rs"]
@@ -157,85 +168,20 @@ mod statuses;
 #[path = "generate/transform.rs"]
 mod transform;
 
-use arbitrary::{Arbitrary, Unstructured};
+use arbitrary::Unstructured;
 use libfuzzer_sys::fuzz_target;
-use tbasis::ScratchBuffer;
-
-use crate::arena::vec_at;
-use crate::input::one_in;
-use crate::packed::Packed;
-use crate::plan::{decode_corners_plan, decode_plan, write_inputs, TAN};
-use crate::status::TBASIS_OK;
 
 fuzz_target!(|data: &[u8]| {
+    if describe::requested() {
+        describe::start();
+    }
     // `Unstructured` reads zeros past the end, so an input is never refused for being short.
-    if let Err(error) = run(&mut Unstructured::new(data)) {
+    if let Err(error) = run::run(&mut Unstructured::new(data)) {
         if call::debugging() {
             eprintln!("input ends the run early: {error}");
         }
     }
+    if let Some(description) = describe::take() {
+        eprint!("{description}");
+    }
 });
-
-/// Frames of a successful `tbasis_generate` call that also go through the tangent-space
-/// transforms.
-const GENERATED_FRAMES: usize = 4;
-
-fn run(u: &mut Unstructured) -> arbitrary::Result<()> {
-    // The cheap, fixed-size checks first, so the mesh gets whatever bytes are left.
-    let status_probe = if one_in::<4>(u)? {
-        u32::arbitrary(u)?
-    } else {
-        u.int_in_range(0..=31)?
-    };
-    statuses::check_any_status_string(status_probe);
-    transform::check(u)?;
-
-    let also_listing = one_in::<4>(u)?;
-    let plan = decode_plan(u)?;
-    let mut arena = vec![plan.arena_fill; plan.arena];
-    write_inputs(u, &plan, &mut arena)?;
-    let pristine = arena.clone();
-    let mesh = Packed::of(&plan, &pristine);
-    if let (true, Some(mesh)) = (call::debugging(), &mesh) {
-        mesh.describe();
-    }
-    let mut scratch_arena = vec![plan.scratch_fill; plan.scratch.arena_len];
-    // Reused by both calls' Rust API checks, so the second starts with what the first left.
-    let mut rust_scratch = ScratchBuffer::new();
-    let (status, _) = call::check_call(&plan, &mut arena, &mut scratch_arena, mesh.as_ref(), &mut rust_scratch);
-    if let (TBASIS_OK, Some(mesh)) = (status, &mesh) {
-        let frames = GENERATED_FRAMES.min(plan.vertex_count);
-        let tangents: Vec<[f32; 4]> = (0..frames).map(|i| vec_at(&arena, plan.bufs[TAN].element(i))).collect();
-        transform::check_generated(&mesh.normals, &tangents, &mesh.positions);
-    }
-    if also_listing {
-        listing_entry::check_listing_entry(u)?;
-    }
-
-    let corners = decode_corners_plan(u, &plan)?;
-    let mut arena = pristine.clone();
-    let mut scratch_arena = vec![corners.scratch_fill; corners.scratch.arena_len];
-    let (status, report) = call::check_call(
-        &corners,
-        &mut arena,
-        &mut scratch_arena,
-        mesh.as_ref(),
-        &mut rust_scratch,
-    );
-    if status == TBASIS_OK {
-        split::check_generated(u, &corners, &arena, report.as_ref())?;
-    }
-    split::check_arbitrary(u, &plan, &pristine)?;
-
-    if let Some(mesh) = &mesh {
-        mikktspace::check(mesh, &[1, 2]);
-        for variant in mesh.variants() {
-            if call::debugging() {
-                eprintln!("variant:");
-                variant.describe();
-            }
-            mikktspace::check(&variant, &[1]);
-        }
-    }
-    Ok(())
-}

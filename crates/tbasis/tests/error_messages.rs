@@ -233,7 +233,7 @@ fn invalid_frame() {
 fn messages_of_the_errors_a_test_cannot_reach_from_rust() {
     assert_eq!(
         Error::OutOfMemory.to_string(),
-        "out of memory: the scratch could not be allocated"
+        "out of memory: an allocation of the call failed"
     );
     assert_eq!(
         Error::TooManyVertices.to_string(),

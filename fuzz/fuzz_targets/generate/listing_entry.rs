@@ -10,6 +10,7 @@ use crate::status::*;
 use arbitrary::{Arbitrary, Result, Unstructured};
 
 use crate::arena::{bit, fill_vectors, first_change_outside, vec_at, Buf};
+use crate::describe;
 use crate::frames::same;
 use crate::input::{below, index_value, nudge, one_in, pick_encoding, shuffle, weighted, Attribute};
 use crate::listing::listing_tangents;
@@ -96,7 +97,8 @@ pub fn check_listing_entry(u: &mut Unstructured) -> Result<()> {
         b.clamp_into(LISTING_ARENA);
     }
 
-    let mut arena = vec![u8::arbitrary(u)?; LISTING_ARENA];
+    let fill = u8::arbitrary(u)?;
+    let mut arena = vec![fill; LISTING_ARENA];
     let encodings = [pick_encoding(u)?, pick_encoding(u)?, pick_encoding(u)?];
     fill_vectors::<3>(u, encodings[0], Attribute::Position, &bufs[L_VERTEX], &mut arena)?;
     fill_vectors::<3>(u, encodings[1], Attribute::Normal, &bufs[L_NORMAL], &mut arena)?;
@@ -108,6 +110,7 @@ pub fn check_listing_entry(u: &mut Unstructured) -> Result<()> {
             arena[tri.element(k)..tri.element(k) + 2].copy_from_slice(&value.to_le_bytes());
         }
     }
+    describe::listing(vertex_count, triangle_count, &bufs, fill, &arena);
 
     // What the inputs call for.
     let mut hard = 0u32;

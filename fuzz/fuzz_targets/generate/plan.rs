@@ -22,7 +22,7 @@ use crate::input::{
 const MIN_ARENA: usize = 12 * 1024;
 /// Bytes of a caller scratch in its own arena, at most (method MIKKTSPACE asks for about 130 per
 /// corner).
-const OWN_SCRATCH_MAX: usize = 4 << 20;
+pub const OWN_SCRATCH_MAX: usize = 4 << 20;
 /// Most meshes have at most this many vertices and triangles...
 pub const SMALL_VERTICES: usize = 64;
 pub const SMALL_TRIANGLES: usize = 96;
@@ -314,7 +314,7 @@ fn index_count(u: &mut Unstructured, null: bool, vertex_count: usize) -> Result<
 /// Bytes of the arena of a mesh: room for every buffer twice over (each vertex has 60 bytes of
 /// attributes, each corner up to 4 of index and 16 of per-corner tangent), at least [`MIN_ARENA`].
 /// A count past the bounds is one whose spans overflow: nothing of it is placed.
-fn arena_len(vertex_count: usize, corner_count: usize) -> usize {
+pub fn arena_len(vertex_count: usize, corner_count: usize) -> usize {
     let placeable = |count: usize, max: usize| if count > max { 0 } else { count };
     let v = placeable(vertex_count, MAX_VERTICES);
     let c = placeable(corner_count, 3 * MAX_TRIANGLES + 2);
@@ -483,7 +483,13 @@ pub fn decode_plan(u: &mut Unstructured) -> Result<Plan> {
 /// method, policy, flags, threads); for NULL options checked against the documented formula
 /// (MIKKTSPACE's is the library's unit test's to check: the calls use exactly the size asked
 /// for, or a little less or more).
-fn scratch_needed(vertex_count: usize, indices: &Buf, options_null: bool, codes: [u32; 4], threshold: f32) -> usize {
+pub fn scratch_needed(
+    vertex_count: usize,
+    indices: &Buf,
+    options_null: bool,
+    codes: [u32; 4],
+    threshold: f32,
+) -> usize {
     let [method, policy, flags, threads] = codes;
     // Only the counts and whether `indices` is NULL are read (method MIKKTSPACE's size depends on
     // the index count); no pointer is followed.

@@ -9,7 +9,8 @@ output without copies; other dtypes and layouts are converted once.
   mikktspace.c); ``split_corners`` and ``apply_split``: the vertices a per-corner result needs;
 - ``to_tangent_space``, ``from_tangent_space``: directions between object and tangent space;
 - ``Method``, ``Policy``: the choices, also accepted as their string values;
-- ``Error`` and its subclasses: what can go wrong; no output is written then.
+- ``Error`` and its subclasses: what can go wrong; no output is written then (``InternalError``,
+  a bug, excepted: outputs may then be partly written).
 """
 
 from ._errors import (

@@ -2,7 +2,8 @@
 
 Each subclass also derives from the built-in exception that fits it (``ValueError``,
 ``TypeError``, ``IndexError``...), so code that catches those keeps working. Whatever is raised,
-no output array has been written.
+no output array has been written, except after ``InternalError`` (a bug: the library panicked
+while writing), when ``out`` and ``bitangents`` may hold old and new rows mixed.
 """
 
 from __future__ import annotations
@@ -115,11 +116,18 @@ class TooManyVerticesError(Error, OverflowError):
 
 
 class OutOfMemoryError(Error, MemoryError):
-    """The library could not allocate its working memory."""
+    """An allocation of the library failed (its working memory, or a smaller one).
+
+    Nothing was written.
+    """
 
 
 class InternalError(Error):
-    """A failure the package does not expect: a bug, in the package or the library."""
+    """A failure the package does not expect: a bug, in the package or the library.
+
+    Unlike the other errors it may come after writing began: ``out`` and ``bitangents`` may hold
+    any mix of their old rows and new values, and must not be used.
+    """
 
 
 # The library's status values (include/tbasis.h) and the class each raises.

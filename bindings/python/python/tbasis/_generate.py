@@ -216,7 +216,8 @@ def generate(
 
     Returns ``tangents``; with bitangents ``(tangents, bitangents)``; with report
     ``(tangents, report)``; with both ``(tangents, bitangents, report)``. On any error a
-    ``tbasis.Error`` is raised and neither ``out`` nor ``bitangents`` has been written.
+    ``tbasis.Error`` is raised and neither ``out`` nor ``bitangents`` has been written (but for
+    ``tbasis.InternalError``, a bug, after which they may be partly written).
     """
     mesh = _mesh(positions, normals, texcoords, indices)
     options = _options(method, policy, threshold, flip_v, threads)

@@ -153,7 +153,8 @@ pub enum Error {
         /// What the call found, all degenerate triangles counted.
         report: Report,
     },
-    /// Scratch memory could not be allocated.
+    /// An allocation of the call failed (its working memory, or a list it grows); nothing was
+    /// written.
     OutOfMemory,
     /// The caller's scratch is smaller than [`crate::scratch_size_for`].
     ScratchTooSmall {
@@ -292,7 +293,7 @@ impl fmt::Display for Error {
                 "policy Reject: triangle {triangle} has degenerate texture coordinates, zero area or non-finite input ({} degenerate triangles in all)",
                 report.degenerate_triangles
             ),
-            Error::OutOfMemory => f.write_str("out of memory: the scratch could not be allocated"),
+            Error::OutOfMemory => f.write_str("out of memory: an allocation of the call failed"),
             Error::ScratchTooSmall { needed, len } => write!(
                 f,
                 "the scratch holds {len} bytes; this call needs {needed} (scratch_size_for)"

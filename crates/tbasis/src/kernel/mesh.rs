@@ -392,20 +392,17 @@ impl<'a> Output<'a> {
         }
     }
 
-    /// Disjoint parts for consecutive vertex ranges (exclusive `ends`), one per worker.
-    pub(crate) fn split(&mut self, ends: &[usize]) -> Vec<OutputPart<'_>> {
-        let tangents = self.tangents.split(ends);
+    /// Disjoint parts for consecutive vertex ranges (exclusive `ends`), one per worker, without
+    /// allocating.
+    pub(crate) fn split<'p>(&'p mut self, ends: &'p [usize]) -> impl Iterator<Item = OutputPart<'p>> + 'p {
+        let tangents = self.tangents.split(ends).into_iter();
         let mut bitangents = self.bitangents.as_mut().map(|b| b.split(ends).into_iter());
         let starts = core::iter::once(0).chain(ends.iter().copied());
-        tangents
-            .into_iter()
-            .zip(starts)
-            .map(|(tangents, first)| OutputPart {
-                tangents,
-                bitangents: bitangents.as_mut().and_then(Iterator::next),
-                first,
-            })
-            .collect()
+        tangents.zip(starts).map(move |(tangents, first)| OutputPart {
+            tangents,
+            bitangents: bitangents.as_mut().and_then(Iterator::next),
+            first,
+        })
     }
 }
 

@@ -4,11 +4,13 @@
 //!
 //! One rule decides how many workers a call gets, for every method: at most `threads`, and at
 //! most one per [`MIN_TRIANGLES_PER_WORKER`] triangles, since below that starting a thread costs
-//! more than it saves. With one worker everything runs on the calling thread and nothing is
-//! allocated here, so a call with caller scratch on one thread allocates nothing.
+//! more than it saves. With one worker everything runs on the calling thread, so a call with
+//! caller scratch on one thread allocates nothing. Nothing here allocates on any thread count
+//! (the standard library's thread start excepted: [`run`]).
 #![forbid(unsafe_code)]
 
 use std::sync::{Mutex, PoisonError};
+use std::thread::ScopedJoinHandle;
 
 use crate::kernel::error::Error;
 use crate::kernel::mesh::Mesh;
@@ -33,7 +35,7 @@ pub fn workers_for(threads: u32, triangles: usize) -> usize {
 pub fn worker_count(threads: u32, mesh: &Mesh) -> usize {
     let vertex_count = mesh.vertex_count();
     let workers = workers_for(threads, mesh.corner_count() / 3);
-    if workers > 1 && !split_pays_off(mesh, &range_ends(vertex_count, workers)) {
+    if workers > 1 && !split_pays_off(mesh, range_ends(vertex_count, workers).ends()) {
         return 1;
     }
     workers
@@ -50,7 +52,8 @@ fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
     let Ok(triangle_count) = mesh.indices.triangle_count(mesh.vertex_count()) else {
         return true;
     };
-    let mut seen = vec![0usize; ends.len()];
+    let mut seen = [0usize; MAX_RANGES];
+    let seen = &mut seen[..ends.len().min(MAX_RANGES)];
     let mut sampled = 0usize;
     for t in (0..triangle_count).step_by(LOCALITY_SAMPLE_STEP) {
         let workers = mesh.indices.triangle(t).map(|v| ends.partition_point(|&end| end <= v));
@@ -64,73 +67,128 @@ fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
     seen.iter().all(|&count| 4 * count <= 3 * sampled)
 }
 
-/// The exclusive ends of `workers` near-equal consecutive ranges of `count` items.
-pub fn range_ends(count: usize, workers: usize) -> Vec<usize> {
-    ends(count, workers).collect()
+/// The exclusive ends of `workers` (at most [`MAX_RANGES`]) near-equal consecutive ranges of
+/// `count` items.
+pub fn range_ends(count: usize, workers: usize) -> Ranges {
+    Ranges::from_ends(ends(count, workers))
 }
 
-/// [`range_ends`] one at a time, without allocating.
+/// [`range_ends`] one at a time.
 pub fn ends(count: usize, workers: usize) -> impl Iterator<Item = usize> {
     (1..=workers).map(move |w| (count as u128 * w as u128 / workers as u128) as usize)
 }
 
-/// Runs `job` on every part, the first on the calling thread and the others on scoped threads,
-/// and returns the results in part order. A panic in a worker resumes on the calling thread.
-pub fn run<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync) -> Vec<R> {
-    run_spawning(parts, job, || true)
+/// Runs `job` on every part (at most [`MAX_RANGES`]), the first on the calling thread and the
+/// others on scoped threads, and hands the results to `each` on the calling thread, in part order.
+/// A panic in a worker resumes on the calling thread once every worker has ended, so nothing runs
+/// on after a call returns or unwinds.
+///
+/// Nothing here allocates: the parts, their threads' handles and the results stay on the stack.
+/// With one part, `job` runs directly. With more, the standard library's `std::thread::scope`
+/// and each thread it starts allocate a little of their own on the calling thread (an `Arc` for
+/// the scope; an `Arc` and two `Box`es per thread, a few dozen bytes each), which, like every
+/// allocation of the standard library's own, ends the process if it fails: neither has a
+/// fallible form. A thread the system cannot start (`spawn_scoped`'s error) is no failure: its
+/// part runs on the calling thread.
+pub fn run<P: Send, R: Send>(parts: impl IntoIterator<Item = P>, job: impl Fn(P) -> R + Sync, each: impl FnMut(R)) {
+    run_spawning(parts, job, each, || true)
+}
+
+/// [`run`], folding the results in part order with `merge`; `None` without parts.
+pub fn run_folded<P: Send, R: Send>(
+    parts: impl IntoIterator<Item = P>,
+    job: impl Fn(P) -> R + Sync,
+    mut merge: impl FnMut(R, R) -> R,
+) -> Option<R> {
+    let mut total = None;
+    run(parts, job, |result| {
+        total = Some(match total.take() {
+            Some(before) => merge(before, result),
+            None => result,
+        });
+    });
+    total
 }
 
 /// [`run`], asking `may_spawn` before each thread so a test can make spawning fail. A part whose
-/// thread cannot be started (out of threads or memory) runs on the calling thread instead: parts
-/// are independent, so the bits are the same either way, never a partial output.
-fn run_spawning<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync, may_spawn: impl Fn() -> bool) -> Vec<R> {
+/// thread cannot be started (`spawn_scoped` fails: out of threads, or the system could not map
+/// the thread's stack) runs on the calling thread instead: parts are independent, so the bits
+/// are the same either way, never a partial output.
+fn run_spawning<P: Send, R: Send>(
+    parts: impl IntoIterator<Item = P>,
+    job: impl Fn(P) -> R + Sync,
+    mut each: impl FnMut(R),
+    may_spawn: impl Fn() -> bool,
+) {
+    let mut parts = parts.into_iter();
+    let Some(first) = parts.next() else {
+        return;
+    };
     // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
     // nothing.
-    let slots: Vec<Mutex<Option<P>>> = parts.into_iter().map(|part| Mutex::new(Some(part))).collect();
+    let mut others = 0;
+    let slots: [Mutex<Option<P>>; MAX_RANGES - 1] = core::array::from_fn(|_| {
+        let part = parts.next();
+        others += usize::from(part.is_some());
+        Mutex::new(part)
+    });
+    assert!(parts.next().is_none(), "more than MAX_RANGES parts");
+    if others == 0 {
+        return each(job(first));
+    }
+    let slots = &slots[..others];
     let take = |slot: &Mutex<Option<P>>| {
         let part = slot.lock().unwrap_or_else(PoisonError::into_inner).take();
         part.expect("each part runs once")
     };
-    let Some((first, others)) = slots.split_first() else {
-        return Vec::new();
-    };
+    let (job, take) = (&job, &take);
     std::thread::scope(|scope| {
-        let spawned: Vec<_> = others
-            .iter()
-            .map(|slot| {
-                let work = || job(take(slot));
-                may_spawn()
-                    .then(|| std::thread::Builder::new().spawn_scoped(scope, work).ok())
-                    .flatten()
-            })
-            .collect();
-        let mut results = vec![job(take(first))];
-        for (slot, handle) in others.iter().zip(spawned) {
-            results.push(match handle {
+        let mut handles: [Option<ScopedJoinHandle<'_, R>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
+        for (slot, handle) in slots.iter().zip(&mut handles) {
+            if may_spawn() {
+                *handle = std::thread::Builder::new()
+                    .spawn_scoped(scope, move || job(take(slot)))
+                    .ok();
+            }
+        }
+        each(job(first));
+        for (slot, handle) in slots.iter().zip(&mut handles) {
+            each(match handle.take() {
                 Some(handle) => handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
                 None => job(take(slot)),
             });
         }
-        results
-    })
+    });
 }
 
 /// Runs `a` on the calling thread and `b` beside it (after `a`, on the calling thread, when no
-/// thread can be started) and returns both results. A panic in either resumes on the caller.
-pub fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+/// thread can be started) and returns both results. A panic in either resumes on the caller once
+/// both have ended. Allocates nothing itself ([`run`]).
+pub fn join<A, B, FA, FB>(a: FA, b: FB) -> (A, B)
+where
+    A: Send,
+    B: Send,
+    FA: FnOnce() -> A + Send,
+    FB: FnOnce() -> B + Send,
+{
+    /// One of the two jobs, or its result.
+    enum Either<A, B> {
+        A(A),
+        B(B),
+    }
     let (mut a_result, mut b_result) = (None, None);
-    let jobs: Vec<Box<dyn FnOnce() + Send + '_>> =
-        vec![Box::new(|| a_result = Some(a())), Box::new(|| b_result = Some(b()))];
-    run(jobs, |job| job());
+    let job = |part: Either<FA, FB>| match part {
+        Either::A(a) => Either::A(a()),
+        Either::B(b) => Either::B(b()),
+    };
+    run([Either::A(a), Either::B(b)], job, |result| match result {
+        Either::A(a) => a_result = Some(a),
+        Either::B(b) => b_result = Some(b),
+    });
     (
         a_result.expect("run ran the first job"),
         b_result.expect("run ran the second job"),
     )
-}
-
-/// The workers' reports merged, or the first worker's error.
-pub fn merge(results: Vec<Result<Report, Error>>) -> Result<Report, Error> {
-    results.into_iter().fold(Ok(Report::default()), merge_results)
 }
 
 /// Two consecutive workers' results merged: both reports, or the first error.
@@ -196,18 +254,11 @@ pub(crate) fn split<'a, T>(items: &'a mut [T], ends: &'a [usize], per: usize) ->
     })
 }
 
-/// Runs `job(first triangle, part)` for every range, the first on the calling thread; with one
-/// range, without allocating.
-pub(crate) fn run_ranges<P: Send>(ends: &[usize], mut parts: impl Iterator<Item = P>, job: impl Fn(usize, P) + Sync) {
-    if ends.len() <= 1 {
-        if let Some(part) = parts.next() {
-            job(0, part);
-        }
-        return;
-    }
+/// Runs `job(first triangle, part)` for every range, the first on the calling thread ([`run`]);
+/// with one range, directly.
+pub(crate) fn run_ranges<P: Send>(ends: &[usize], parts: impl Iterator<Item = P>, job: impl Fn(usize, P) + Sync) {
     let starts = core::iter::once(0).chain(ends.iter().copied());
-    let parts: Vec<(usize, P)> = starts.zip(parts).collect();
-    run(parts, |(first, part)| job(first, part));
+    run(starts.zip(parts), |(first, part)| job(first, part), |()| {});
 }
 
 #[cfg(test)]
@@ -216,8 +267,8 @@ mod tests {
 
     #[test]
     fn ranges_cover_every_vertex_once() {
-        assert_eq!(range_ends(10, 3), vec![3, 6, 10]);
-        assert_eq!(range_ends(usize::MAX, 2).last(), Some(&usize::MAX));
+        assert_eq!(range_ends(10, 3).ends(), [3, 6, 10]);
+        assert_eq!(range_ends(usize::MAX, 2).ends().last(), Some(&usize::MAX));
     }
 
     /// A strip of `n` vertices with triangles of consecutive vertices, or (`scattered`) with one
@@ -262,10 +313,26 @@ mod tests {
         assert_eq!(workers_for(2, 1000 * per, true), 1);
     }
 
+    /// [`run_spawning`]'s results, in the order it handed them over.
+    fn results<P: Send, R: Send>(parts: Vec<P>, job: impl Fn(P) -> R + Sync, may_spawn: impl Fn() -> bool) -> Vec<R> {
+        let mut results = Vec::new();
+        run_spawning(parts, job, |result| results.push(result), may_spawn);
+        results
+    }
+
     #[test]
     fn run_keeps_part_order() {
-        assert_eq!(run(vec![1, 2, 3, 4], |x| x * 10), vec![10, 20, 30, 40]);
-        assert_eq!(run(Vec::<u8>::new(), |x| x), Vec::<u8>::new());
+        assert_eq!(results(vec![1, 2, 3, 4], |x| x * 10, || true), vec![10, 20, 30, 40]);
+        assert_eq!(results(Vec::<u8>::new(), |x| x, || true), Vec::<u8>::new());
+        let all: Vec<usize> = (0..MAX_RANGES).collect();
+        assert_eq!(results(all.clone(), |x| x, || true), all);
+        assert_eq!(run_folded(vec![1, 2, 3], |x| x, |a, b| 10 * a + b), Some(123));
+    }
+
+    #[test]
+    #[should_panic(expected = "more than MAX_RANGES parts")]
+    fn run_refuses_more_parts_than_it_has_room_for() {
+        run(0..=MAX_RANGES, |x| x, |_| {});
     }
 
     #[test]
@@ -281,14 +348,40 @@ mod tests {
         let caller = std::thread::current().id();
         let parts: Vec<usize> = (0..6).collect();
         let on_caller = |part: usize| (part * 10, std::thread::current().id() == caller);
-        let none = run_spawning(parts.clone(), on_caller, || false);
+        let none = results(parts.clone(), on_caller, || false);
         assert_eq!(none, (0..6).map(|p| (p * 10, true)).collect::<Vec<_>>());
         // Every other spawn fails: those parts run on the caller, the rest on their threads.
         let attempt = std::sync::atomic::AtomicUsize::new(0);
-        let alternate = run_spawning(parts, on_caller, || {
+        let alternate = results(parts, on_caller, || {
             attempt.fetch_add(1, std::sync::atomic::Ordering::Relaxed) % 2 == 1
         });
         let expected: Vec<_> = (0..6).map(|p| (p * 10, p == 0 || p % 2 == 1)).collect();
         assert_eq!(alternate, expected);
+    }
+
+    /// A panic in any part, the caller's or a worker's, reaches the caller only after every other
+    /// part has ended: nothing writes after a call that panicked has returned (the C boundary's
+    /// `TBASIS_ERROR_INTERNAL`).
+    #[test]
+    fn a_panic_resumes_on_the_caller_after_every_part_has_ended() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        for panicking in [0, 1, 3] {
+            let ended = AtomicUsize::new(0);
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                run(
+                    0..4,
+                    |part| {
+                        if part == panicking {
+                            panic!("part {part}");
+                        }
+                        std::thread::sleep(std::time::Duration::from_millis(50));
+                        ended.fetch_add(1, Ordering::SeqCst);
+                    },
+                    |()| {},
+                )
+            }));
+            assert!(outcome.is_err(), "part {panicking}'s panic was lost");
+            assert_eq!(ended.load(Ordering::SeqCst), 3, "part {panicking} panicked");
+        }
     }
 }

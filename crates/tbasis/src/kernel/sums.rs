@@ -168,30 +168,29 @@ impl<'s> Scratch<'s> {
     }
 
     /// The same arrays cut at the vertices in `ends` (exclusive ends, increasing, the last the
-    /// vertex count), one part per worker.
-    pub fn split(&mut self, ends: &[usize]) -> Vec<Scratch<'_>> {
+    /// vertex count), one part per worker, without allocating.
+    pub fn split<'p>(&'p mut self, ends: &'p [usize]) -> impl Iterator<Item = Scratch<'p>> + 'p {
         let (mut sums, mut flags): (&mut [VertexSums], &mut [u8]) = (&mut *self.sums, &mut *self.flags);
         let mut first = self.first;
-        let mut parts = Vec::with_capacity(ends.len());
-        for &end in ends {
+        ends.iter().map(move |&end| {
             let (part_sums, rest_sums) = core::mem::take(&mut sums).split_at_mut(end - first);
             let (part_flags, rest_flags) = core::mem::take(&mut flags).split_at_mut(end - first);
-            parts.push(Scratch {
+            let part = Scratch {
                 sums: part_sums,
                 flags: part_flags,
                 first,
                 links: Links::Caller(&mut []),
-            });
+            };
             (sums, flags, first) = (rest_sums, rest_flags, end);
-        }
-        parts
+            part
+        })
     }
 }
 
 /// Runs `job` on the arrays of `workers` consecutive ranges of vertices, each with its part of
 /// `output` if there is one, the first range on the calling thread and the others on their own,
 /// and folds the results in range order with `merge`. With one worker: on the whole arrays and
-/// output, allocating nothing.
+/// output. Allocates nothing ([`parallel::run`]).
 pub fn for_each_range<R: Send>(
     scratch: &mut Scratch,
     output: Option<&mut Output>,
@@ -202,14 +201,12 @@ pub fn for_each_range<R: Send>(
     if workers == 1 {
         return job(scratch, output.map(Output::whole).as_mut());
     }
-    let ends = parallel::range_ends(scratch.flags.len(), workers);
-    let outputs: Vec<Option<OutputPart>> = match output {
-        Some(output) => output.split(&ends).into_iter().map(Some).collect(),
-        None => ends.iter().map(|_| None).collect(),
-    };
-    let parts = scratch.split(&ends).into_iter().zip(outputs).collect();
-    let results = parallel::run(parts, |(mut part, mut out)| job(&mut part, out.as_mut()));
-    results.into_iter().reduce(merge).expect("at least one range")
+    let ranges = parallel::range_ends(scratch.flags.len(), workers);
+    let ends = ranges.ends();
+    let mut outputs = output.map(|output| output.split(ends));
+    let outputs = core::iter::from_fn(|| Some(outputs.as_mut().and_then(Iterator::next)));
+    let parts = scratch.split(ends).zip(outputs);
+    parallel::run_folded(parts, |(mut part, mut out)| job(&mut part, out.as_mut()), merge).expect("at least one range")
 }
 
 /// The per-corner output of the per-vertex pipelines, from the frames their vertices kept
@@ -235,17 +232,21 @@ pub fn write_corner_frames(
     if workers == 1 {
         return write(0..triangle_count, tangents);
     }
-    let ends = parallel::range_ends(triangle_count, workers);
-    let corner_ends: Vec<usize> = ends.iter().map(|&end| 3 * end).collect();
+    let ranges = parallel::range_ends(triangle_count, workers);
+    let ends = ranges.ends();
+    let corner_ends = parallel::Ranges::from_ends(ends.iter().map(|&end| 3 * end));
     let starts = core::iter::once(0).chain(ends.iter().copied());
-    let parts: Vec<_> = tangents
-        .split(&corner_ends)
+    let parts = tangents
+        .split(corner_ends.ends())
         .into_iter()
-        .zip(starts.zip(ends.iter().copied()))
-        .collect();
-    parallel::run(parts, |(mut part, (start, end))| write(start..end, &mut part))
-        .into_iter()
-        .collect()
+        .zip(starts.zip(ends.iter().copied()));
+    let first_error = |before: Result<(), Error>, next| before.and(next);
+    parallel::run_folded(
+        parts,
+        |(mut part, (start, end))| write(start..end, &mut part),
+        first_error,
+    )
+    .unwrap_or(Ok(()))
 }
 
 /// A vertex used by non-degenerate triangles of both UV orientations: a mirror fold.

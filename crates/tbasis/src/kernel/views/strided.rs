@@ -507,19 +507,58 @@ impl<'a, T: Element> StridedMut<'a, T> {
 
     /// Disjoint views of consecutive element ranges covering the view, for writing from several
     /// threads; `ends` are the exclusive ends of the ranges, increasing, the last at most `len`.
-    pub(crate) fn split(&mut self, ends: &[usize]) -> Vec<StridedMut<'_, T>> {
-        let mut start = 0;
-        ends.iter()
-            .map(|&end| {
-                assert!(start <= end && end <= self.len, "split ranges out of order");
-                // SAFETY: elements start..end lie inside this view, the ranges are disjoint, and
-                // the parts borrow `self` mutably, so nothing else writes them meanwhile.
-                let part =
-                    unsafe { StridedMut::from_raw(self.base.add(start * self.stride), self.stride, end - start) };
-                start = end;
-                part
-            })
-            .collect()
+    /// Made one at a time as the result is iterated, without allocating.
+    pub(crate) fn split<'p>(&'p mut self, ends: &'p [usize]) -> Split<'p, T> {
+        Split {
+            parts: SplitParts {
+                base: self.base,
+                stride: self.stride,
+                len: self.len,
+                start: 0,
+                ends: ends.iter(),
+                _borrow: PhantomData,
+            },
+        }
+    }
+}
+
+/// The parts [`StridedMut::split`] cuts a view into, made as they are iterated.
+pub(crate) struct Split<'p, T> {
+    parts: SplitParts<'p, T>,
+}
+
+impl<'p, T: Element> IntoIterator for Split<'p, T> {
+    type Item = StridedMut<'p, T>;
+    type IntoIter = SplitParts<'p, T>;
+
+    fn into_iter(self) -> SplitParts<'p, T> {
+        self.parts
+    }
+}
+
+/// The iterator over the parts of a [`Split`].
+pub(crate) struct SplitParts<'p, T> {
+    base: *mut u8,
+    stride: usize,
+    len: usize,
+    /// Where the next part starts.
+    start: usize,
+    ends: core::slice::Iter<'p, usize>,
+    /// The view the parts come from, borrowed mutably for as long as they live.
+    _borrow: PhantomData<&'p mut T>,
+}
+
+impl<'p, T: Element> Iterator for SplitParts<'p, T> {
+    type Item = StridedMut<'p, T>;
+
+    fn next(&mut self) -> Option<StridedMut<'p, T>> {
+        let (start, end) = (self.start, *self.ends.next()?);
+        assert!(start <= end && end <= self.len, "split ranges out of order");
+        self.start = end;
+        // SAFETY: elements start..end lie inside the view `split` borrowed mutably for 'p, the
+        // ranges are disjoint (each starts where the previous ended), so nothing else writes them
+        // meanwhile.
+        Some(unsafe { StridedMut::from_raw(self.base.add(start * self.stride), self.stride, end - start) })
     }
 }
 

@@ -562,79 +562,100 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
 /// they are added. Unit tests cut small meshes into several chunks too.
 const CHUNK_TRIANGLES: usize = parallel::MIN_TRIANGLES_PER_WORKER;
 
-/// Per worker, a list of corner terms for each part.
-type TermLists = Vec<Vec<Vec<CornerTerm>>>;
+/// `lists` lists of corner terms, each with room for `room` terms, or [`Error::OutOfMemory`].
+fn term_lists(lists: usize, room: usize) -> Result<Vec<Vec<CornerTerm>>, Error> {
+    let mut all = Vec::new();
+    all.try_reserve_exact(lists).map_err(|_| Error::OutOfMemory)?;
+    for _ in 0..lists {
+        let mut list = Vec::new();
+        list.try_reserve_exact(room).map_err(|_| Error::OutOfMemory)?;
+        all.push(list);
+    }
+    Ok(all)
+}
 
 /// [`accumulate`] on several workers whatever the mesh's vertex order, with the same bits:
-/// `parts` are the scratch of consecutive vertex ranges ending at `ends`. Each worker measures a
-/// consecutive range of each chunk of triangles, keeping each corner's term in a list for the
-/// part that holds its vertex; in the next round each part adds its lists, from the first range to
-/// the last, so that every vertex still adds its terms in triangle order. Round `r` adds chunk
-/// `r - 1` and measures chunk `r`.
+/// `scratch` is cut into the consecutive vertex ranges ending at `ends`, one per worker. Each
+/// worker measures a consecutive range of each chunk of triangles, keeping each corner's term in
+/// a list for the part that holds its vertex; in the next round each part adds its lists, from
+/// the first range to the last, so that every vertex still adds its terms in triangle order.
+/// Round `r` adds chunk `r - 1` and measures chunk `r`.
+///
+/// Memory: two sets (the lists being filled and those being added) of `workers * workers` lists,
+/// reserved fallibly before any round; with two workers each list has room for every corner of
+/// its worker's share of a chunk, so no list ever grows. With more, a list that fills up grows
+/// fallibly too. Any failure is [`Error::OutOfMemory`], before any output is written.
 pub fn accumulate_in_chunks(
     mesh: &Mesh,
     options: &Options,
-    parts: Vec<Scratch>,
+    scratch: &mut Scratch,
     ends: &[usize],
 ) -> Result<Report, Error> {
     let Some(texcoords) = mesh.texcoords else {
-        return parallel::merge(parallel::run(parts, |mut part| mark_referenced(mesh, &mut part)));
+        let mark = |mut part: Scratch| mark_referenced(mesh, &mut part);
+        return parallel::run_folded(scratch.split(ends), mark, parallel::merge_results)
+            .unwrap_or(Ok(Report::default()));
     };
-    let workers = parts.len();
+    let workers = ends.len();
     let triangle_count = mesh.indices.triangle_count(mesh.vertex_count())?;
     let mut report = Report::default();
-    // Room for a range's terms in each list, more than its share: a list grows only when one
-    // part holds most of a range's vertices.
-    let room = 2 * 3 * CHUNK_TRIANGLES / (workers * workers);
-    let empty = || -> TermLists {
-        (0..workers)
-            .map(|_| (0..workers).map(|_| Vec::with_capacity(room)).collect())
-            .collect()
-    };
-    let (mut filled, mut spare) = (empty(), empty());
-    let mut parts: Vec<(usize, Scratch)> = parts.into_iter().enumerate().collect();
+    // Room for a range's terms in each list, more than its share (a list grows only when one
+    // part holds most of a range's vertices), and never more than every corner of the range.
+    let most = 3 * CHUNK_TRIANGLES.div_ceil(workers);
+    let room = (2 * 3 * CHUNK_TRIANGLES / (workers * workers)).min(most);
+    // List `w * workers + d` holds the terms worker `w` measured for part `d`.
+    let (mut filled, mut spare) = (
+        term_lists(workers * workers, room)?,
+        term_lists(workers * workers, room)?,
+    );
     for round in 0..=triangle_count.div_ceil(CHUNK_TRIANGLES) {
         let chunk = (round * CHUNK_TRIANGLES).min(triangle_count)..((round + 1) * CHUNK_TRIANGLES).min(triangle_count);
         let previous = &filled;
-        let jobs: Vec<_> = parts.into_iter().zip(spare).collect();
-        let done = parallel::run(jobs, |((d, part), mut lists)| {
-            for term in previous.iter().flat_map(|worker_lists| &worker_lists[d]) {
-                let slot = term.vertex as usize - part.first;
-                term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
-            }
-            lists.iter_mut().for_each(Vec::clear);
-            let at = |w: usize| chunk.start + chunk.len() * w / workers;
-            let found = simd::run(|| {
-                let mut found = Report::default();
-                let everything = |_: &[usize; 3]| true;
-                measure(
-                    mesh,
-                    texcoords,
-                    options,
-                    at(d)..at(d + 1),
-                    everything,
-                    |t, k, v, term| {
-                        if k == 0 && term.side == NONE {
-                            found.note_degenerate(t);
-                        }
-                        let term = CornerTerm {
-                            vertex: v as u32,
-                            ..term
-                        };
-                        lists[ends.partition_point(|&end| end <= v)].push(term);
-                    },
-                )
-                .map(|()| found)
-            });
-            ((d, part), lists, found)
-        });
-        spare = filled;
-        (parts, filled) = (Vec::with_capacity(workers), Vec::with_capacity(workers));
-        for (part, lists, found) in done {
-            report.merge(&found?);
-            parts.push(part);
-            filled.push(lists);
-        }
+        let jobs = scratch.split(ends).zip(spare.chunks_mut(workers)).enumerate();
+        let round_report = parallel::run_folded(
+            jobs,
+            |(d, (part, lists))| {
+                for term in (0..workers).flat_map(|w| &previous[w * workers + d]) {
+                    let slot = term.vertex as usize - part.first;
+                    term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
+                }
+                lists.iter_mut().for_each(Vec::clear);
+                let at = |w: usize| chunk.start + chunk.len() * w / workers;
+                simd::run(|| {
+                    let (mut found, mut out_of_memory) = (Report::default(), false);
+                    let everything = |_: &[usize; 3]| true;
+                    measure(
+                        mesh,
+                        texcoords,
+                        options,
+                        at(d)..at(d + 1),
+                        everything,
+                        |t, k, v, term| {
+                            if k == 0 && term.side == NONE {
+                                found.note_degenerate(t);
+                            }
+                            let term = CornerTerm {
+                                vertex: v as u32,
+                                ..term
+                            };
+                            let list = &mut lists[ends.partition_point(|&end| end <= v)];
+                            if list.len() == list.capacity() && list.try_reserve(room.max(1)).is_err() {
+                                out_of_memory = true;
+                                return;
+                            }
+                            list.push(term);
+                        },
+                    )?;
+                    if out_of_memory {
+                        return Err(Error::OutOfMemory);
+                    }
+                    Ok(found)
+                })
+            },
+            parallel::merge_results,
+        );
+        report.merge(&round_report.expect("one job per part")?);
+        core::mem::swap(&mut filled, &mut spare);
     }
     Ok(report)
 }

@@ -143,8 +143,8 @@ pub(crate) fn resolve_measured(
     let mut found = if local_workers == workers || vertex_count > u32::MAX as usize {
         sums::for_each_range(scratch, None, workers, accumulate_range, parallel::merge_results)?
     } else {
-        let ends = parallel::range_ends(vertex_count, workers);
-        accumulate::accumulate_in_chunks(mesh, options, scratch.split(&ends), &ends)?
+        let ranges = parallel::range_ends(vertex_count, workers);
+        accumulate::accumulate_in_chunks(mesh, options, scratch, ranges.ends())?
     };
 
     // 2. REJECT refuses the mesh before anything is written, naming the first bad triangle.

@@ -1,0 +1,375 @@
+//! Every allocation a C call makes on one thread or two may fail, and the call then returns
+//! `TBASIS_ERROR_OUT_OF_MEMORY` with its output untouched: every method and policy, per vertex and
+//! per corner, on meshes large enough for two workers (32768 triangles; the library starts one
+//! worker per 16384), whose triangle order follows the vertex order (each worker adds a range of
+//! vertices) or not (the workers measure chunks of triangles apart and add the terms after).
+//!
+//! Its own binary without the test harness (`harness = false` in Cargo.toml): the allocations of
+//! the workers are counted process-wide, so no other thread may run. For each call, a first run
+//! records every allocation, on the calling thread and on the workers, with its backtrace; then,
+//! for each of them in turn, a run in which that one fails. An allocation whose backtrace reaches
+//! `std::thread` before the library is the standard library starting a thread (`std::thread::scope`
+//! and `Builder::spawn_scoped` allocate their bookkeeping infallibly: a failure there ends the
+//! process, and no stable interface can make them fail softly), so it is counted, checked to be
+//! only that, and not failed. Every other one is the library's own. REJECT refuses the grid in
+//! order (its collapsed rows) after allocating, and computes on the shuffled one.
+//!
+//! `cargo test -p tbasis-ffi --test allocation_threads` runs it (about a minute in a debug build;
+//! the backtraces need its symbols); `ALLOCATION_CALLS=TEXT` keeps the calls whose description
+//! holds TEXT, such as `ALLOCATION_CALLS="ANGLE SKIP, shuffled grid, 2 threads"`.
+//!
+//! The counts on these meshes, which the test checks ([`expected`]), per call, per vertex and per
+//! corner alike:
+//!
+//! | method, policy | 1 thread | 2 threads, grid in order | 2 threads, shuffled |
+//! |---|---:|---:|---:|
+//! | LENGYEL + LEGACY | 1 | 1 | 1 (one worker: the listing splits only ordered meshes) |
+//! | LENGYEL, ANGLE, AREA, UNIFORM + SKIP or REJECT | 1 | 1 | 11 |
+//! | the same + INHERIT | 2 | 2 | 12 |
+//! | MIKKTSPACE + LEGACY, SKIP or INHERIT | 1 | 9 | 15 (8 + 7 on the worker) |
+//! | MIKKTSPACE + REJECT | 1 | 1 (refused) | 15 (8 + 7 on the worker) |
+//!
+//! One allocation is the working memory (`tbasis_scratch_size`'s bytes), a second one policy
+//! INHERIT's adjacency (reserved apart from it); where the workers measure chunks of triangles
+//! apart (shuffled), the chunks' term lists are 10 more (two sets of one list of 2 x 2 lists);
+//! MIKKTSPACE on two threads grows the lists of corners a worker hands on to another (a growth
+//! each time one fills up: 8 on the grid in order, 7 on each worker on the shuffled one). Each of
+//! them is fallible. Besides, each `parallel::run` of two parts makes the standard library's 4
+//! allocations on the calling thread (1 for the scope, 3 to start the thread; none on the thread
+//! itself), which are not failed.
+
+// The C boundary's own source, compiled in to count what it allocates (the C library has no Rust
+// interface).
+#[allow(dead_code)]
+#[path = "../src/codes.rs"]
+mod codes;
+#[path = "../src/fault.rs"]
+mod fault;
+// Without the harness its unit test is compiled but not run: its import goes unused.
+#[allow(dead_code, non_camel_case_types, unused_imports)]
+#[path = "../src/ffi.rs"]
+mod ffi;
+#[allow(dead_code, non_camel_case_types)]
+#[path = "../src/status.rs"]
+mod status;
+
+use std::ptr::null_mut;
+
+use codes::*;
+use tbasis_test_support::alloc_count::{
+    allocations, fail_allocation, fail_other_allocation, mark_calling_thread, other_allocations, record_backtraces,
+    Counting, Recorded,
+};
+use tbasis_test_support::cases::Case;
+use tbasis_test_support::shapes::{grid, Vertex};
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Quads a side of the test grid: 128 x 128 quads, 32768 triangles, two workers' worth.
+const SIDE: usize = 128;
+
+/// A value no call writes.
+const UNTOUCHED: f32 = -7.5;
+
+/// Where an allocation was made.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Site {
+    /// The library (or the C boundary).
+    Library,
+    /// The standard library starting a thread.
+    ThreadStart,
+}
+
+/// Tells [`Site`] from the function names of `record`'s backtrace, innermost first: the first one
+/// of the library or of `std::thread` decides.
+fn site(record: &Recorded) -> Site {
+    let boundary = concat!(module_path!(), "::ffi::");
+    let functions = record.functions();
+    for function in &functions {
+        let function = function.trim_start_matches('<');
+        if function.starts_with("std::thread::") {
+            return Site::ThreadStart;
+        }
+        if function.starts_with("tbasis::") || function.starts_with(boundary) {
+            return Site::Library;
+        }
+    }
+    panic!(
+        "an allocation with no frame of the library or of std::thread (a build without symbols?):\n{}",
+        functions.join("\n")
+    )
+}
+
+/// What one call allocated.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Tally {
+    /// The library's allocations on the calling thread and on the workers.
+    calling: usize,
+    workers: usize,
+    /// The standard library's thread start, on the calling thread and on the workers.
+    thread_start: usize,
+    thread_start_on_workers: usize,
+}
+
+/// The test grids: a mirror seam down the middle column (mirror-fold vertices, corners whose
+/// tangents differ). In order (`shuffled` false), rows 60 to 62 collapse to one `v`: degenerate
+/// triangles, and vertices that only touch them (INHERIT's propagation; REJECT refuses the grid).
+/// Shuffled, no row collapses (REJECT computes), and the vertices are renumbered at random, so
+/// that nearly every triangle has corners in both halves of the vertex range.
+fn test_grid(shuffled: bool) -> Case {
+    let middle = SIDE as f32 / 2.0;
+    let mut case = grid("grid", SIDE, SIDE, |i, j| {
+        let (x, y) = (i as f32, j as f32);
+        let v = if !shuffled && (60..=62).contains(&j) { 61.0 } else { y };
+        Vertex {
+            position: [x, y, 0.25 * (x * 0.1).sin()],
+            normal: [0.0, 0.0, 1.0],
+            uv: [(x - middle).abs() / 16.0, v / 16.0],
+        }
+    });
+    if shuffled {
+        let n = case.vertex_count();
+        // A fixed permutation: Fisher-Yates driven by a 64-bit LCG.
+        let mut order: Vec<usize> = (0..n).collect();
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        for i in (1..n).rev() {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            order.swap(i, (state >> 33) as usize % (i + 1));
+        }
+        let mut renumbered = vec![0u32; n];
+        for (new, &old) in order.iter().enumerate() {
+            renumbered[old] = new as u32;
+        }
+        let permute = |values: &[[f32; 3]]| order.iter().map(|&old| values[old]).collect::<Vec<_>>();
+        let texcoords = case.texcoords.as_ref().unwrap();
+        case = Case {
+            name: "shuffled grid".into(),
+            positions: permute(&case.positions),
+            normals: permute(&case.normals),
+            texcoords: Some(order.iter().map(|&old| texcoords[old]).collect()),
+            indices: Some(case.indices.unwrap().iter().map(|&v| renumbered[v as usize]).collect()),
+        };
+    }
+    case
+}
+
+/// `case` as the C ABI reads it: packed arrays with texture coordinates, 32-bit indices.
+fn c_mesh(case: &Case) -> ffi::tbasis_mesh {
+    let indices = case.indices.as_ref().expect("an indexed case");
+    ffi::tbasis_mesh {
+        vertex_count: case.vertex_count(),
+        positions: case.positions.as_ptr().cast(),
+        positions_stride: 12,
+        normals: case.normals.as_ptr().cast(),
+        normals_stride: 12,
+        texcoords: case.texcoords.as_ref().expect("texture coordinates").as_ptr().cast(),
+        texcoords_stride: 8,
+        indices: indices.as_ptr().cast(),
+        index_count: indices.len(),
+        index_type: TBASIS_INDEX_U32,
+    }
+}
+
+/// A C entry point writing into the given elements, returning its status.
+type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
+
+/// Records what `call` allocates, then fails each of the library's allocations in turn: the call
+/// must return `TBASIS_ERROR_OUT_OF_MEMORY` and leave all `count` output elements untouched.
+fn fail_each_allocation(what: &str, call: &Entry, count: usize) -> Tally {
+    let mut output = vec![[UNTOUCHED; 4]; count];
+    let mut written = output.clone();
+    // Counted on a second call: the first may make one-time allocations.
+    call(&mut written);
+    let (calling_before, other_before) = (allocations(), other_allocations());
+    let (status, records) = record_backtraces(|| call(&mut written));
+    let (calling_made, other_made) = (allocations() - calling_before, other_allocations() - other_before);
+    // REJECT refuses the grid's collapsed rows, after allocating all the same.
+    assert!(
+        status == status::TBASIS_OK || status == status::TBASIS_ERROR_DEGENERATE_UV,
+        "{what}: status {status}"
+    );
+    assert_eq!(
+        records.len(),
+        calling_made + other_made,
+        "{what}: allocations not recorded"
+    );
+    let mut tally = Tally::default();
+    let mut library = Vec::new();
+    for record in &records {
+        match (site(record), record.calling) {
+            (Site::Library, true) => {
+                tally.calling += 1;
+                library.push((true, record.number - calling_before));
+            }
+            (Site::Library, false) => {
+                tally.workers += 1;
+                library.push((false, record.number - other_before));
+            }
+            (Site::ThreadStart, true) => tally.thread_start += 1,
+            (Site::ThreadStart, false) => tally.thread_start_on_workers += 1,
+        }
+    }
+    for (calling, k) in library {
+        let status = if calling {
+            fail_allocation(Some(allocations() + k));
+            let status = call(&mut output);
+            fail_allocation(None);
+            status
+        } else {
+            fail_other_allocation(Some(other_allocations() + k));
+            let status = call(&mut output);
+            fail_other_allocation(None);
+            status
+        };
+        let thread = if calling {
+            "the calling thread's"
+        } else {
+            "the workers'"
+        };
+        assert_eq!(
+            status,
+            status::TBASIS_ERROR_OUT_OF_MEMORY,
+            "{what}: {thread} allocation {k} failed"
+        );
+        assert!(
+            output.iter().flatten().all(|&x| x == UNTOUCHED),
+            "{what}: {thread} allocation {k} failed, yet the output was written"
+        );
+    }
+    tally
+}
+
+/// The library's allocations in one call (on the calling thread, on the workers) that the
+/// module's table gives.
+fn expected(method: u32, policy: u32, shuffled: bool, threads: u32) -> (usize, usize) {
+    let mikktspace = method == TBASIS_METHOD_MIKKTSPACE;
+    let memory = 1 + usize::from(policy == TBASIS_DEGENERATE_INHERIT && !mikktspace);
+    match (threads, mikktspace, shuffled) {
+        (1, _, _) => (memory, 0),
+        (_, false, true) if policy != TBASIS_DEGENERATE_LEGACY => (memory + 10, 0),
+        (_, false, _) => (memory, 0),
+        (_, true, false) if policy == TBASIS_DEGENERATE_REJECT => (1, 0),
+        (_, true, false) => (9, 0),
+        (_, true, true) => (8, 7),
+    }
+}
+
+/// Method and policy codes, and the name the tally table uses.
+const COMBINATIONS: [(u32, u32, &str); 17] = [
+    (TBASIS_METHOD_LENGYEL, TBASIS_DEGENERATE_LEGACY, "LENGYEL LEGACY"),
+    (TBASIS_METHOD_LENGYEL, TBASIS_DEGENERATE_SKIP, "LENGYEL SKIP"),
+    (TBASIS_METHOD_LENGYEL, TBASIS_DEGENERATE_INHERIT, "LENGYEL INHERIT"),
+    (TBASIS_METHOD_LENGYEL, TBASIS_DEGENERATE_REJECT, "LENGYEL REJECT"),
+    (TBASIS_METHOD_ANGLE, TBASIS_DEGENERATE_SKIP, "ANGLE SKIP"),
+    (TBASIS_METHOD_ANGLE, TBASIS_DEGENERATE_INHERIT, "ANGLE INHERIT"),
+    (TBASIS_METHOD_ANGLE, TBASIS_DEGENERATE_REJECT, "ANGLE REJECT"),
+    (TBASIS_METHOD_AREA, TBASIS_DEGENERATE_SKIP, "AREA SKIP"),
+    (TBASIS_METHOD_AREA, TBASIS_DEGENERATE_INHERIT, "AREA INHERIT"),
+    (TBASIS_METHOD_AREA, TBASIS_DEGENERATE_REJECT, "AREA REJECT"),
+    (TBASIS_METHOD_UNIFORM, TBASIS_DEGENERATE_SKIP, "UNIFORM SKIP"),
+    (TBASIS_METHOD_UNIFORM, TBASIS_DEGENERATE_INHERIT, "UNIFORM INHERIT"),
+    (TBASIS_METHOD_UNIFORM, TBASIS_DEGENERATE_REJECT, "UNIFORM REJECT"),
+    (TBASIS_METHOD_MIKKTSPACE, TBASIS_DEGENERATE_LEGACY, "MIKKTSPACE LEGACY"),
+    (TBASIS_METHOD_MIKKTSPACE, TBASIS_DEGENERATE_SKIP, "MIKKTSPACE SKIP"),
+    (
+        TBASIS_METHOD_MIKKTSPACE,
+        TBASIS_DEGENERATE_INHERIT,
+        "MIKKTSPACE INHERIT",
+    ),
+    (TBASIS_METHOD_MIKKTSPACE, TBASIS_DEGENERATE_REJECT, "MIKKTSPACE REJECT"),
+];
+
+/// The one test of this binary, as `cargo test`'s filters and `--list` see it.
+const TEST: &str = "each_allocation_on_one_and_two_threads_may_fail_and_the_call_says_so";
+
+fn main() {
+    // The test harness's arguments, as far as they apply to one test: `--list`, `--ignored` (it is
+    // not ignored) and name filters. `ALLOCATION_CALLS=TEXT` keeps the calls whose description
+    // holds TEXT.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|arg| arg == "--list") {
+        println!("{TEST}: test");
+        return;
+    }
+    let filters: Vec<&String> = args.iter().filter(|arg| !arg.starts_with('-')).collect();
+    if args.iter().any(|arg| arg == "--ignored")
+        || !(filters.is_empty() || filters.iter().any(|f| TEST.contains(f.as_str())))
+    {
+        println!("running 0 tests");
+        return;
+    }
+    println!("running 1 test");
+    mark_calling_thread();
+    let filter = std::env::var("ALLOCATION_CALLS").ok();
+    let mut table = Vec::new();
+    for shuffled in [false, true] {
+        let case = test_grid(shuffled);
+        let mesh = c_mesh(&case);
+        let corners = case.indices.as_ref().unwrap().len();
+        for threads in [1u32, 2] {
+            for (method, policy, name) in COMBINATIONS {
+                let options = ffi::tbasis_options {
+                    method,
+                    degenerate_policy: policy,
+                    flags: 0,
+                    threads,
+                    degenerate_threshold: 0.0,
+                    scratch: null_mut(),
+                    scratch_size: 0,
+                };
+                let per_vertex = |tangents: &mut [[f32; 4]]| {
+                    let output = ffi::tbasis_output {
+                        tangents: tangents.as_mut_ptr().cast(),
+                        tangents_stride: 16,
+                        bitangents: null_mut(),
+                        bitangents_stride: 0,
+                    };
+                    unsafe { ffi::tbasis_generate(&mesh, &options, &output, null_mut()) }
+                };
+                let per_corner = |corners: &mut [[f32; 4]]| unsafe {
+                    ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut())
+                };
+                let entries: [(&str, &Entry, usize); 2] = [
+                    ("tbasis_generate", &per_vertex, case.vertex_count()),
+                    ("tbasis_generate_corners", &per_corner, corners),
+                ];
+                for (entry, call, count) in entries {
+                    let what = format!("{entry}, {name}, {}, {threads} threads", case.name);
+                    if filter.as_ref().is_some_and(|filter| !what.contains(filter.as_str())) {
+                        continue;
+                    }
+                    let tally = fail_each_allocation(&what, call, count);
+                    eprintln!("{what}: {tally:?}");
+                    let (calling, workers) = expected(method, policy, shuffled, threads);
+                    assert_eq!(
+                        (tally.calling, tally.workers),
+                        (calling, workers),
+                        "{what}: the library's allocations (calling thread, workers)"
+                    );
+                    // One scope and one thread per parallel step of two parts, none on one thread.
+                    assert_eq!(tally.thread_start % 4, 0, "{what}: {tally:?}");
+                    assert_eq!(tally.thread_start_on_workers, 0, "{what}: {tally:?}");
+                    if threads == 1 {
+                        assert_eq!(tally.thread_start, 0, "{what}: one thread started threads");
+                    }
+                    table.push((what, tally));
+                }
+            }
+        }
+    }
+    let failed: usize = table.iter().map(|(_, tally)| tally.calling + tally.workers).sum();
+    let thread_starts: usize = table.iter().map(|(_, tally)| tally.thread_start).sum();
+    eprintln!(
+        "{} calls, {failed} allocations failed one at a time, {thread_starts} of the standard library's thread start left",
+        table.len()
+    );
+    // Every path ran: with no filter, each call; the threads' start was seen and told apart.
+    if filter.is_none() {
+        assert_eq!(table.len(), 2 * 2 * COMBINATIONS.len() * 2);
+        assert!(thread_starts > 0, "no thread started: the calls ran on one thread");
+    }
+    println!("test {TEST} ... ok");
+}
