@@ -49,7 +49,33 @@ pub fn all() -> Vec<FaceMesh> {
     for seed in 0..40 {
         meshes.push(random_faces(seed, 60));
     }
+    // Welded corners that differ in the sign of a zero: which one represents them, and so the
+    // bits of their tangent, depends on the grid.
+    let signed_zeros: Vec<FaceMesh> = mikktspace_scenes::signed_zeros()
+        .iter()
+        .flat_map(|stress| [from_stress(stress, false), from_stress(stress, true)])
+        .collect();
+    for far in [100.0, -1e30, f32::NAN] {
+        meshes.push(after_ignored_face(&quad_grid(7, 6, 5), far));
+        meshes.push(after_ignored_face(&random_faces(41, 60), far));
+        meshes.extend(signed_zeros.iter().map(|mesh| after_ignored_face(mesh, far)));
+    }
     meshes
+}
+
+/// `mesh` behind a first face of 5 vertices at `far`, which mikktspace.c ignores but for its
+/// vertex 0's position: that starts the bounding box of its weld, and so moves its grid.
+pub fn after_ignored_face(mesh: &FaceMesh, far: f32) -> FaceMesh {
+    let mut out = FaceMesh {
+        name: format!("{} after an ignored face at {far}", mesh.name),
+        ..FaceMesh::default()
+    };
+    out.push_face((0..5).map(|k| ([far, far + k as f32, far], [0.0, 0.0, 1.0], [0.0, 0.0])));
+    for (&start, &size) in mesh.starts.iter().zip(&mesh.sizes) {
+        let vertex = |v: usize| (mesh.positions[v], mesh.normals[v], mesh.texcoords[v]);
+        out.push_face((start..start + size).map(vertex));
+    }
+    out
 }
 
 /// A grid of `cols` by `rows` quads over a bumpy sheet, with each quad's UVs stretched so that

@@ -77,7 +77,9 @@ impl Default for Settings {
 /// by face, vertex by vertex. Returns false, with no call to `set_tangent`, when there is no such
 /// face or memory runs out.
 ///
-/// Each attribute is read once per face vertex, all before the first `set_tangent`.
+/// Each attribute is read once per face vertex, all before the first `set_tangent`; and, as
+/// mikktspace.c does, the position of vertex 0 of face 0 when face 0 has neither 3 nor 4
+/// vertices (first, before the other attributes).
 ///
 /// ```
 /// use tbasis::mikktspace::{generate_tangents, Geometry};
@@ -117,6 +119,7 @@ pub fn generate_tangents_with<I: Geometry>(geometry: &mut I, settings: &Settings
         normals: &read.normals,
         texcoords: &read.texcoords,
         faces: &read.faces,
+        index_zero: read.index_zero,
     };
     let threads = settings.threads.max(1);
     let Ok(out) = faces_interface::solve(&mesh, settings.angular_threshold, threads) else {
@@ -151,6 +154,9 @@ struct Read {
     normals: Vec<[f32; 3]>,
     texcoords: Vec<[f32; 2]>,
     faces: Vec<(u32, u32)>,
+    /// Face 0's vertex 0's position when face 0 is neither a triangle nor a quad: mikktspace.c
+    /// reads it all the same, to start its bounding box.
+    index_zero: Option<[f32; 3]>,
 }
 
 /// Reads every attribute once, face by face; fails when there is no face of 3 or 4 vertices, when
@@ -178,6 +184,7 @@ fn read<I: Geometry>(geometry: &I) -> Result<Read, Error> {
         positions: try_with_capacity(slots)?,
         normals: try_with_capacity(slots)?,
         texcoords: try_with_capacity(slots)?,
+        index_zero: (faces[0].0 != 0).then(|| geometry.position(0, 0)),
         faces,
     };
     let slot_ends = read

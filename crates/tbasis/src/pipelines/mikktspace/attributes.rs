@@ -12,6 +12,9 @@ pub(crate) struct Attributes<'a> {
     /// Per corner, mikktspace.c's index for it where faces are not all triangles
     /// ([`super::faces_interface`]); `None`: corner `3 t + k` is `4 t + k`.
     pub corner_values: Option<&'a [u32]>,
+    /// The position of face 0's vertex 0 when face 0 gives no triangle: mikktspace.c reads index
+    /// 0's position to start its bounding box all the same (`GenerateSharedVerticesIndexList`).
+    pub index_zero: Option<Vec3>,
 }
 
 impl Attributes<'_> {

@@ -28,6 +28,9 @@ pub(crate) struct FaceMesh<'a> {
     /// Per face of 3 or 4 vertices: its number among all faces and its first slot (its slots
     /// run to the next one's first, or to the end).
     pub faces: &'a [(u32, u32)],
+    /// Face 0's vertex 0's position when face 0 has neither 3 nor 4 vertices (see
+    /// [`Attributes::index_zero`]).
+    pub index_zero: Option<Vec3>,
 }
 
 /// Per slot: its tangent space (`setTSpace`'s tangent, bitangent and magnitudes) and whether the
@@ -58,6 +61,7 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
         mesh: &view,
         flip_v: false,
         corner_values: Some(&triangles.values),
+        index_zero: mesh.index_zero,
     };
     let mut memory = zeroed_bytes(scratch_bytes(slot_count, corner_count).ok_or(Error::SizeOverflow)?)?;
     let mut buffers = Buffers::take(&mut Arena::Carve(&mut memory), slot_count, corner_count)?;

@@ -268,6 +268,7 @@ fn compute<'a>(
         mesh,
         flip_v: options.flip_v,
         corner_values: None,
+        index_zero: None,
     };
     *report = Report::default();
 

@@ -174,7 +174,8 @@ fn split_cells(
     let position = |v: u32| attributes.position(v);
 
     // 1. The bounding box.
-    let (min, max) = bounding_box(threads, corner_count, &|c| position(vertex_of(c)));
+    let seed = attributes.index_zero.unwrap_or_else(|| position(vertex_of(0)));
+    let (min, max) = bounding_box(threads, corner_count, seed, &|c| position(vertex_of(c)));
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
 
     // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads); the cells
@@ -256,17 +257,22 @@ fn split_cells(
     Some(filled)
 }
 
-/// The box mikktspace.c's `if ... else if` updates find, from the first corner's position: a
-/// corner lowers the minimum or raises the maximum where it compares past them, so a `NaN` moves
-/// nothing and a `NaN` in the first corner stays; of equal values (a -0 and a +0) the first stays.
-/// Ranges of corners on separate threads, each from its first value that is not `NaN`, joined in
-/// order with the same strict comparisons: the same box.
+/// The box mikktspace.c's `if ... else if` updates find, from `seed` (index 0's position) over
+/// corners 1 onwards: a corner lowers the minimum or raises the maximum where it compares past
+/// them, so a `NaN` moves nothing and a `NaN` in the seed stays; of equal values (a -0 and a +0)
+/// the first stays. Ranges of corners on separate threads, each from its first value that is not
+/// `NaN`, joined to the seed in order with the same strict comparisons: the same box.
 /// `position(c)` is corner `c`'s position.
-fn bounding_box(threads: u32, corner_count: usize, position: &(impl Fn(usize) -> Vec3 + Sync)) -> (Vec3, Vec3) {
+fn bounding_box(
+    threads: u32,
+    corner_count: usize,
+    seed: Vec3,
+    position: &(impl Fn(usize) -> Vec3 + Sync),
+) -> (Vec3, Vec3) {
     let ranges = parallel::item_ranges(threads, corner_count, 3);
     let ends = ranges.ends();
     let mut boxes = [[[f32::NAN; 3]; 2]; parallel::MAX_RANGES];
-    let starts = core::iter::once(0).chain(ends.iter().copied());
+    let starts = core::iter::once(1).chain(ends.iter().copied());
     let parts = starts.zip(ends).zip(boxes.iter_mut());
     parallel::run_ranges(ends, parts, |_, ((start, &end), [min, max])| {
         for c in start..end {
@@ -282,8 +288,8 @@ fn bounding_box(threads: u32, corner_count: usize, position: &(impl Fn(usize) ->
             }
         }
     });
-    let [mut min, mut max] = boxes[0];
-    for [range_min, range_max] in &boxes[1..ends.len()] {
+    let (mut min, mut max) = (seed, seed);
+    for [range_min, range_max] in &boxes[..ends.len()] {
         for axis in 0..3 {
             if min[axis] > range_min[axis] {
                 min[axis] = range_min[axis];
@@ -291,12 +297,6 @@ fn bounding_box(threads: u32, corner_count: usize, position: &(impl Fn(usize) ->
             if max[axis] < range_max[axis] {
                 max[axis] = range_max[axis];
             }
-        }
-    }
-    let first = position(0);
-    for axis in 0..3 {
-        if first[axis].is_nan() {
-            (min[axis], max[axis]) = (first[axis], first[axis]);
         }
     }
     (min, max)
@@ -573,7 +573,8 @@ mod tests {
             let expected = one_pass(&ordered);
             let bits = |(min, max): (Vec3, Vec3)| (min.map(f32::to_bits), max.map(f32::to_bits));
             for threads in [1, 2, 8] {
-                let found = bounding_box(threads, corners.len(), &|c| points[corners[c] as usize]);
+                let seed = ordered[0];
+                let found = bounding_box(threads, corners.len(), seed, &|c| points[corners[c] as usize]);
                 assert_eq!(bits(found), bits(expected), "case {case}, threads={threads}");
             }
         }
@@ -590,6 +591,7 @@ mod tests {
             mesh: &mesh,
             flip_v: false,
             corner_values: None,
+            index_zero: None,
         };
         let hashes: Vec<u32> = (0..4)
             .map(|v| hash_of(&attributes.key(v).map(canonical_bits)))

@@ -39,6 +39,7 @@ fn for_each_case(seed: u64, mut check: impl FnMut(usize, &Case, &Attributes)) {
             mesh: &mesh,
             flip_v: false,
             corner_values: None,
+            index_zero: None,
         };
         check(round, &case, &attributes);
     }
