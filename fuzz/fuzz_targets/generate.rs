@@ -116,6 +116,9 @@ mod ffi;
 #[rustfmt::skip]
 #[path = "../../src/fault.rs"]
 mod fault;
+#[rustfmt::skip]
+#[path = "../../src/guard.rs"]
+mod guard;
 #[allow(dead_code)]
 #[rustfmt::skip]
 #[path = "../../src/codes.rs"]
