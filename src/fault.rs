@@ -1,6 +1,7 @@
-//! The test-only panic of the C library and the Python binding (which includes this file): with the
-//! feature `fault-injection`, every entry point panics inside its guard when `TBASIS_INJECT_PANIC`
-//! is set, so that a test can see each one turn a library bug into `TBASIS_ERROR_INTERNAL`.
+//! The test-only panic of the C libraries and the Python binding (`crates/mikktspace-c` and
+//! `bindings/python` include this file): with the feature `fault-injection`, every entry point
+//! panics inside its guard when `TBASIS_INJECT_PANIC` is set, so that a test can see each one turn
+//! a library bug into its error (`TBASIS_ERROR_INTERNAL`; 0 from `genTangSpace`).
 
 /// Panics when the feature `fault-injection` is on and `TBASIS_INJECT_PANIC` is set.
 #[cfg(feature = "fault-injection")]

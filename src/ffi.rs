@@ -2,12 +2,12 @@
 //!
 //! Each function copies the caller's descriptor structs by value, turns pointers and strides into
 //! bounds-carrying views (checking NULLs, strides and sizes), and calls the safe core inside
-//! `catch_unwind`. The doc comments here are the manual cbindgen writes into `include/tbasis.h`.
+//! `guard` (`guard.rs`: it catches panics). The doc comments here are the manual cbindgen writes
+//! into `include/tbasis.h`.
 
 use core::ffi::{c_char, c_long, c_void};
 use core::mem::size_of;
 use core::ptr;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use tbasis::{
     check_written, copy_split_vertices, from_tangent_space, generate, generate_corners, generate_corners_with_scratch,
@@ -16,7 +16,7 @@ use tbasis::{
 };
 
 use crate::codes::*;
-use crate::fault::inject_panic;
+use crate::guard::guard;
 use crate::status::*;
 
 /// The triangle mesh, read in place. Each attribute pointer addresses vertex 0; vertex `i` starts
@@ -149,11 +149,7 @@ impl From<Report> for tbasis_report {
 
 /// Runs `body`, turning a panic (a library bug) into `TBASIS_ERROR_INTERNAL`.
 fn boundary_value<T>(body: impl FnOnce() -> Result<T, Failure>) -> Result<T, Failure> {
-    let guarded = || {
-        inject_panic();
-        body()
-    };
-    catch_unwind(AssertUnwindSafe(guarded)).unwrap_or(Err(Failure::Status(TBASIS_ERROR_INTERNAL)))
+    guard(Err(Failure::Status(TBASIS_ERROR_INTERNAL)), body)
 }
 
 /// Runs `body` and returns its status, a panic (a library bug) becoming `TBASIS_ERROR_INTERNAL`.

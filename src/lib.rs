@@ -11,4 +11,5 @@ compile_error!("the feature fault-injection is for test builds only, never a rel
 mod codes;
 mod fault;
 mod ffi;
+mod guard;
 mod status;

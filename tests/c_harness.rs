@@ -9,49 +9,19 @@
 #[path = "common/mod.rs"]
 mod common;
 
-use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use common::artifacts::library_dir;
+use common::c_build::{self, compiler, C_FLAGS, SANITIZE_FLAGS, STATIC_LIBS};
 use common::tools::{run, run_ok};
 use tbasis_test_support::{cases, needs};
 
 const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
-const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-ffp-contract=off"];
-const SANITIZE_FLAGS: [&str; 4] = [
-    "-fsanitize=address,undefined",
-    "-fno-sanitize-recover=all",
-    "-g",
-    "-fno-omit-frame-pointer",
-];
 
 /// An empty directory under the target dir for one test's build products.
 fn work_dir(test: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("c_harness").join(test);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("create the build directory");
-    dir
-}
-
-/// Integration tests get no `TARGET` variable; this file only runs on Linux, so build the triple.
-fn target_triple() -> String {
-    let env = if cfg!(target_env = "musl") { "musl" } else { "gnu" };
-    format!("{}-unknown-linux-{env}", std::env::consts::ARCH)
-}
-
-/// The C (or C++) compiler `cc` chooses for this target, at -O2.
-fn compiler(cpp: bool, out_dir: &Path) -> Command {
-    let triple = target_triple();
-    cc::Build::new()
-        .cpp(cpp)
-        .target(&triple)
-        .host(&triple)
-        .opt_level(2)
-        .cargo_metadata(false)
-        .out_dir(out_dir)
-        .get_compiler()
-        .to_command()
+    c_build::work_dir("c_harness", test)
 }
 
 fn c_sources() -> Vec<PathBuf> {
@@ -78,7 +48,7 @@ fn build_harness(dir: &Path, sanitized: bool) -> PathBuf {
     command.args(C_FLAGS);
     if sanitized {
         command.args(SANITIZE_FLAGS).arg(lib.join("libtbasis.a"));
-        command.args(["-lpthread", "-ldl", "-lm"]);
+        command.args(STATIC_LIBS);
     } else {
         command.arg("-L").arg(&lib).arg("-ltbasis").arg("-lm");
         command.arg(format!("-Wl,-rpath,{}", lib.display()));
@@ -182,20 +152,9 @@ fn c_harness_passes_under_asan_and_ubsan() {
     let exe = build_harness(&dir, true);
     let mut command = Command::new(exe);
     // The out-of-memory check asks for ~4e18 bytes and needs malloc to return NULL, not to abort.
-    command.env("ASAN_OPTIONS", "allocator_may_return_null=1:detect_leaks=1");
-    command.env("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1");
+    c_build::sanitizer_environment(&mut command);
     let output = run_harness(command, &dir, None);
-    // Reports, not the warning the refused allocation prints.
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    let reports: Vec<&str> = stderr
-        .lines()
-        .filter(|line| {
-            line.contains("runtime error:")
-                || line.contains("SUMMARY: ")
-                || line.contains("ERROR: ") && line.contains("Sanitizer")
-        })
-        .collect();
-    assert!(reports.is_empty(), "sanitizer reports:\n{}", reports.join("\n"));
+    c_build::assert_no_sanitizer_reports(&output);
 }
 
 #[test]
@@ -205,13 +164,7 @@ fn c_harness_passes_under_valgrind() {
     }
     let dir = work_dir("valgrind");
     let exe = build_harness(&dir, false);
-    let mut command = Command::new("valgrind");
-    command.args([
-        "--error-exitcode=99",
-        "--leak-check=full",
-        "--errors-for-leak-kinds=definite",
-    ]);
-    command.arg(exe);
+    let command = c_build::valgrind(&exe);
     // Under valgrind the debug library runs ~50 times slower: leave the largest stability cases
     // to the plain and sanitized runs, which take every case.
     run_harness(command, &dir, Some(20_000));
@@ -267,47 +220,13 @@ fn header_compiles_as_cpp() {
     }
 }
 
-/// The functions the header declares (identifiers `tbasis_*` followed by `(` outside comments).
-fn header_functions() -> BTreeSet<String> {
-    let header = std::fs::read_to_string(Path::new(CRATE_DIR).join("include/tbasis.h")).expect("include/tbasis.h");
-    let mut names = BTreeSet::new();
-    for line in header.lines().filter(|line| !line.trim_start().starts_with("//")) {
-        for (start, _) in line.match_indices("tbasis_") {
-            let rest = &line[start..];
-            let end = rest
-                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-                .unwrap_or(rest.len());
-            if rest[end..].starts_with('(') {
-                names.insert(rest[..end].to_string());
-            }
-        }
-    }
-    names
-}
-
 #[test]
 fn shared_library_exports_exactly_the_header_functions() {
     if !needs::BINUTILS.found_or_skip() {
         return;
     }
-    let lib = library_dir().join("libtbasis.so");
-    let output = Command::new("nm")
-        .args(["-D", "--defined-only"])
-        .arg(&lib)
-        .output()
-        .expect("run nm");
-    assert!(output.status.success(), "nm -D {}: {}", lib.display(), output.status);
-    let exported: BTreeSet<String> = String::from_utf8_lossy(&output.stdout)
-        .lines()
-        .filter_map(|line| line.split_whitespace().last())
-        .map(|name| name.split('@').next().unwrap_or(name).to_string())
-        .collect();
-    let declared = header_functions();
-    assert!(declared.len() >= 5, "found only {declared:?} in the header");
-    assert_eq!(
-        exported,
-        declared,
-        "dynamic symbols of {} vs the header's functions",
-        lib.display()
-    );
+    let header = Path::new(CRATE_DIR).join("include/tbasis.h");
+    let exported =
+        c_build::assert_exports_are_the_header_functions(&library_dir().join("libtbasis.so"), &header, "tbasis_", &[]);
+    assert!(exported.len() >= 5, "found only {exported:?} in the header");
 }

@@ -1,6 +1,7 @@
-//! Installs the library with `scripts/install.sh` into fresh prefixes and consumes it the ways a C
-//! or C++ project would: the installed layout and soname, CMake's `find_package` (shared, static,
-//! version check, moved prefix), pkg-config (shared and static) and the C++ example.
+//! Installs the libraries with `scripts/install.sh` into fresh prefixes and consumes them the ways
+//! a C or C++ project would: the installed layout and sonames, CMake's `find_package` (shared,
+//! static, version check, moved prefix), pkg-config (shared and static), the C++ example, and the
+//! mikktspace.c drop-in relinking `examples/mikktspace` through CMake and pkg-config.
 //!
 //! One test per set of tools, so that a missing tool makes only the tests that need it skip
 //! (under CI, where tools must be installed, fail: `tbasis_test_support::needs`).
@@ -21,8 +22,9 @@ const MINOR: &str = env!("CARGO_PKG_VERSION_MINOR");
 const PATCH: &str = env!("CARGO_PKG_VERSION_PATCH");
 const WARNINGS: [&str; 4] = ["-Wall", "-Wextra", "-Werror", "-pedantic"];
 
-fn real_name() -> String {
-    format!("libtbasis.so.{MAJOR}.{MINOR}.{PATCH}")
+/// The installed file of the shared library `lib{name}.so`.
+fn real_name(name: &str) -> String {
+    format!("lib{name}.so.{MAJOR}.{MINOR}.{PATCH}")
 }
 
 /// The line `examples/c/consumer.c` prints on success.
@@ -90,8 +92,9 @@ fn dynamic_entries(file: &Path, tag: &str) -> Vec<String> {
         .collect()
 }
 
-/// Requires that `exe` loads the shared library by its soname, or, `statically`, not at all.
-fn check_needed(exe: &Path, statically: bool) {
+/// Requires that `exe` loads the shared library `lib{name}.so` by its soname, or, `statically`, no
+/// library of this repository at all.
+fn check_needed(exe: &Path, name: &str, statically: bool) {
     let needed = dynamic_entries(exe, "NEEDED");
     if statically {
         assert!(
@@ -101,10 +104,10 @@ fn check_needed(exe: &Path, statically: bool) {
         );
     } else {
         assert!(
-            needed.contains(&soname()),
+            needed.contains(&soname(name)),
             "{} should load {} but loads {needed:?}",
             exe.display(),
-            soname()
+            soname(name)
         );
     }
 }
@@ -119,61 +122,77 @@ fn install(prefix: &Path) {
     command.arg(prefix).args(["--profile", profile]);
     command.env("CARGO", env!("CARGO")).env("CARGO_TARGET_DIR", &target_dir);
     let output = run_ok(command, "scripts/install.sh");
-    let expected = format!(
-        "installed tbasis {} ({profile}, soname {})",
-        env!("CARGO_PKG_VERSION"),
-        soname()
-    );
-    assert!(
-        stdout_of(&output).contains(&expected),
-        "scripts/install.sh did not report `{expected}`:\n{}",
-        stdout_of(&output)
-    );
+    for name in LIBRARIES {
+        let expected = format!(
+            "installed {name} {} ({profile}, soname {})",
+            env!("CARGO_PKG_VERSION"),
+            soname(name)
+        );
+        assert!(
+            stdout_of(&output).contains(&expected),
+            "scripts/install.sh did not report `{expected}`:\n{}",
+            stdout_of(&output)
+        );
+    }
 }
 
-/// (a) The files, the symlink chain and the soname.
+/// The C libraries: `lib{name}.so`, `lib{name}.a`, `include/{name}.h`, `{name}.pc`.
+const LIBRARIES: [&str; 2] = ["tbasis", "tbasis_mikktspace"];
+
+/// (a) The files, the symlink chains and the sonames of both libraries.
 fn check_layout(prefix: &Path) {
     let lib = prefix.join("lib");
-    let real = lib.join(real_name());
-    let meta = std::fs::symlink_metadata(&real).unwrap_or_else(|e| panic!("{}: {e}", real.display()));
-    assert!(meta.file_type().is_file(), "{} must be a regular file", real.display());
-    // Relative links, so that the prefix can move.
-    for (link, target) in [(soname(), real_name()), ("libtbasis.so".to_string(), soname())] {
-        let path = lib.join(&link);
-        let found = std::fs::read_link(&path).unwrap_or_else(|e| panic!("{} is not a symlink: {e}", path.display()));
-        assert_eq!(found, Path::new(&target), "{} points elsewhere", path.display());
-    }
-    let archive = std::fs::read(lib.join("libtbasis.a")).expect("lib/libtbasis.a");
-    assert!(
-        archive.starts_with(b"!<arch>\n"),
-        "lib/libtbasis.a is not an ar archive"
-    );
-    let header = std::fs::read(prefix.join("include/tbasis.h")).expect("include/tbasis.h");
-    let committed = std::fs::read(Path::new(CRATE_DIR).join("include/tbasis.h")).expect("the committed header");
-    assert!(
-        header == committed,
-        "the installed header differs from include/tbasis.h"
-    );
-
-    let pc = std::fs::read_to_string(lib.join("pkgconfig/tbasis.pc")).expect("lib/pkgconfig/tbasis.pc");
-    for line in [
-        format!("prefix={}", prefix.display()),
-        format!("Version: {}", env!("CARGO_PKG_VERSION")),
-        "Libs: -L${libdir} -ltbasis".to_string(),
-        "Cflags: -I${includedir}".to_string(),
-    ] {
-        assert!(pc.lines().any(|l| l == line), "tbasis.pc lacks `{line}`:\n{pc}");
+    for name in LIBRARIES {
+        check_library_layout(prefix, name);
     }
     for file in ["tbasisConfig.cmake", "tbasisConfigVersion.cmake"] {
         let text = std::fs::read_to_string(lib.join("cmake/tbasis").join(file)).expect(file);
         assert!(!text.contains(&*prefix.to_string_lossy()), "{file} names the prefix");
         assert!(!text.contains('@'), "{file} has a template key left:\n{text}");
     }
-    assert!(!pc.contains('@'), "tbasis.pc has a template key left:\n{pc}");
+}
+
+/// The installed files of `lib{name}`: the shared library, its links, its soname, the archive,
+/// the header and the `.pc` file.
+fn check_library_layout(prefix: &Path, name: &str) {
+    let lib = prefix.join("lib");
+    let real = lib.join(real_name(name));
+    let meta = std::fs::symlink_metadata(&real).unwrap_or_else(|e| panic!("{}: {e}", real.display()));
+    assert!(meta.file_type().is_file(), "{} must be a regular file", real.display());
+    // Relative links, so that the prefix can move.
+    for (link, target) in [(soname(name), real_name(name)), (format!("lib{name}.so"), soname(name))] {
+        let path = lib.join(&link);
+        let found = std::fs::read_link(&path).unwrap_or_else(|e| panic!("{} is not a symlink: {e}", path.display()));
+        assert_eq!(found, Path::new(&target), "{} points elsewhere", path.display());
+    }
+    let archive = std::fs::read(lib.join(format!("lib{name}.a"))).expect("the archive");
+    assert!(
+        archive.starts_with(b"!<arch>\n"),
+        "lib/lib{name}.a is not an ar archive"
+    );
+    let header = std::fs::read(prefix.join(format!("include/{name}.h"))).expect("the installed header");
+    let committed =
+        std::fs::read(Path::new(CRATE_DIR).join(format!("include/{name}.h"))).expect("the committed header");
+    assert!(
+        header == committed,
+        "the installed header differs from include/{name}.h"
+    );
+
+    let pc = std::fs::read_to_string(lib.join(format!("pkgconfig/{name}.pc"))).expect("the .pc file");
+    for line in [
+        format!("prefix={}", prefix.display()),
+        format!("Name: {name}"),
+        format!("Version: {}", env!("CARGO_PKG_VERSION")),
+        format!("Libs: -L${{libdir}} -l{name}"),
+        "Cflags: -I${includedir}".to_string(),
+    ] {
+        assert!(pc.lines().any(|l| l == line), "{name}.pc lacks `{line}`:\n{pc}");
+    }
+    assert!(!pc.contains('@'), "{name}.pc has a template key left:\n{pc}");
 
     assert_eq!(
         dynamic_entries(&real, "SONAME"),
-        [soname()],
+        [soname(name)],
         "soname of {}",
         real.display()
     );
@@ -217,9 +236,9 @@ fn check_cmake(prefix: &Path, work: &Path) {
     // No LD_LIBRARY_PATH: the shared library is found through the RUNPATH CMake gives executables
     // linked to imported targets in the build tree.
     run_consumer(&build.join("consumer"), None, &consumer_line());
-    check_needed(&build.join("consumer"), false);
+    check_needed(&build.join("consumer"), "tbasis", false);
     run_consumer(&build.join("consumer_static"), None, &consumer_line());
-    check_needed(&build.join("consumer_static"), true);
+    check_needed(&build.join("consumer_static"), "tbasis", true);
 
     // A version of another ABI series, and a newer one of this series, must be refused.
     let next_series = if MAJOR == "0" {
@@ -268,10 +287,15 @@ fn check_cmake_moved(prefix: &Path, work: &Path) {
 
 /// `pkg-config ARGS tbasis` against the installed .pc file.
 fn pkg_config(prefix: &Path, args: &[&str]) -> Vec<String> {
+    pkg_config_of("tbasis", prefix, args)
+}
+
+/// `pkg-config ARGS PACKAGE` against the installed .pc files.
+fn pkg_config_of(package: &str, prefix: &Path, args: &[&str]) -> Vec<String> {
     let mut command = Command::new("pkg-config");
     command.env("PKG_CONFIG_PATH", prefix.join("lib/pkgconfig"));
-    command.args(args).arg("tbasis");
-    let output = run_ok(command, &format!("pkg-config {args:?} tbasis"));
+    command.args(args).arg(package);
+    let output = run_ok(command, &format!("pkg-config {args:?} {package}"));
     stdout_of(&output).split_whitespace().map(str::to_string).collect()
 }
 
@@ -292,7 +316,7 @@ fn check_pkg_config(prefix: &Path, work: &Path) {
     // Nothing records the prefix in the executable, so the loader finds the library through
     // LD_LIBRARY_PATH, as it would for any library in a non-system prefix.
     run_consumer(&exe, Some(&prefix.join("lib")), &consumer_line());
-    check_needed(&exe, false);
+    check_needed(&exe, "tbasis", false);
 
     // The same flags from a copy of the prefix without the shared library: `-ltbasis` can then
     // only mean libtbasis.a, and the link needs Libs.private.
@@ -308,7 +332,7 @@ fn check_pkg_config(prefix: &Path, work: &Path) {
     let exe = work.join("consumer-pkg-config-static");
     compile_consumer(&flags, &exe);
     run_consumer(&exe, None, &consumer_line());
-    check_needed(&exe, true);
+    check_needed(&exe, "tbasis", true);
 }
 
 /// (e) The C++ example against the installed header and shared library.
@@ -328,6 +352,61 @@ fn check_cpp(prefix: &Path, work: &Path) {
         );
         run_consumer(&exe, None, "interleaved: 24 vertices, 24 tangents written in place, ok");
     }
+}
+
+/// Configures and builds `examples/mikktspace` against `prefix`, its `mikktspace.h` (and, with
+/// `with_mikktspace_c`, `mikktspace.c` compiled in) from mikktspace-sys.
+fn cmake_build_sample(prefix: &Path, build: &Path, with_mikktspace_c: bool) {
+    let mut configure = Command::new("cmake");
+    configure
+        .arg("-S")
+        .arg(Path::new(CRATE_DIR).join("examples/mikktspace"));
+    configure.arg("-B").arg(build);
+    configure.arg(format!("-DCMAKE_PREFIX_PATH={}", prefix.display()));
+    let mikktspace_dir = needs::mikktspace_c_dir().expect("needs::MIKKTSPACE_C was checked");
+    configure.arg(format!("-DMIKKTSPACE_DIR={}", mikktspace_dir.display()));
+    if with_mikktspace_c {
+        // mikktspace.c's own warnings are not ours.
+        configure.arg("-DUSE_MIKKTSPACE_C=ON");
+    } else {
+        configure.arg(format!("-DCMAKE_C_FLAGS={}", WARNINGS.join(" ")));
+    }
+    run_ok(configure, "cmake -S examples/mikktspace");
+    let mut compile = Command::new("cmake");
+    compile.arg("--build").arg(build);
+    run_ok(compile, "cmake --build examples/mikktspace");
+}
+
+/// (g) The drop-in: `examples/mikktspace` built with mikktspace.c compiled in, then relinked
+/// through `tbasis::mikktspace` and `tbasis::mikktspace_static` and through
+/// `pkg-config tbasis_mikktspace`: each prints what the build with mikktspace.c printed.
+fn check_dropin(prefix: &Path, work: &Path) {
+    let before = work.join("sample-before");
+    cmake_build_sample(prefix, &before, true);
+    let output = run_ok(
+        Command::new(before.join("app")),
+        "examples/mikktspace with mikktspace.c",
+    );
+    let expected = stdout_of(&output).trim_end().to_string();
+    assert!(expected.ends_with("returned 1 after 7 tangents"), "{expected}");
+
+    let after = work.join("sample-after");
+    cmake_build_sample(prefix, &after, false);
+    run_consumer(&after.join("app"), None, &expected);
+    check_needed(&after.join("app"), "tbasis_mikktspace", false);
+    run_consumer(&after.join("app_static"), None, &expected);
+    check_needed(&after.join("app_static"), "tbasis_mikktspace", true);
+
+    let exe = work.join("sample-pkg-config");
+    let mut command = Command::new("cc");
+    command.arg("-std=c99").args(WARNINGS);
+    command.arg(Path::new(CRATE_DIR).join("examples/mikktspace/app.c"));
+    command.arg("-I").arg(needs::mikktspace_c_dir().expect("checked"));
+    command.args(pkg_config_of("tbasis_mikktspace", prefix, &["--cflags", "--libs"]));
+    command.arg("-o").arg(&exe);
+    run_ok(command, "compiling examples/mikktspace/app.c with pkg-config");
+    run_consumer(&exe, Some(&prefix.join("lib")), &expected);
+    check_needed(&exe, "tbasis_mikktspace", false);
 }
 
 /// A scratch directory named after `test` with the library installed in its `prefix/`.
@@ -364,6 +443,19 @@ fn installed_library_is_consumable_through_pkg_config() {
     }
     let (scratch, prefix) = installed("pkg-config");
     check_pkg_config(&prefix, &scratch.0);
+}
+
+#[test]
+fn installed_dropin_relinks_a_mikktspace_program_through_cmake_and_pkg_config() {
+    if !(needs::CMAKE.found_or_skip()
+        && needs::PKG_CONFIG.found_or_skip()
+        && needs::BINUTILS.found_or_skip()
+        && needs::MIKKTSPACE_C.found_or_skip())
+    {
+        return;
+    }
+    let (scratch, prefix) = installed("dropin");
+    check_dropin(&prefix, &scratch.0);
 }
 
 #[test]

@@ -11,6 +11,8 @@ mod fault;
 #[allow(dead_code, non_camel_case_types)]
 #[path = "../src/ffi.rs"]
 mod ffi;
+#[path = "../src/guard.rs"]
+mod guard;
 #[allow(dead_code, non_camel_case_types)]
 #[path = "../src/status.rs"]
 mod status;

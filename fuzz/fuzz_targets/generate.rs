@@ -123,15 +123,15 @@ mod ffi;
 #[rustfmt::skip]
 #[path = "../../src/fault.rs"]
 mod fault;
+#[rustfmt::skip]
+#[path = "../../src/guard.rs"]
+mod guard;
 #[allow(dead_code)]
 #[rustfmt::skip]
 #[path = "../../src/codes.rs"]
 mod codes;
 #[path = "generate/describe.rs"]
 mod describe;
-#[allow(dead_code)]
-#[path = "../../crates/test-support/src/face_meshes.rs"]
-mod face_meshes;
 #[path = "generate/frames.rs"]
 mod frames;
 #[path = "generate/input.rs"]

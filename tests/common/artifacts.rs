@@ -1,4 +1,5 @@
-//! The library's C artifacts (`libtbasis.so`, `libtbasis.a`), which `cargo test` does not build.
+//! The C libraries' artifacts (`libtbasis.so`, `libtbasis.a`, and the mikktspace.c drop-in's
+//! `libtbasis_mikktspace.so`, `libtbasis_mikktspace.a`), which `cargo test` does not build.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -18,9 +19,11 @@ pub fn release() -> bool {
     profile_dir().file_name().is_some_and(|name| name == "release")
 }
 
-/// Builds the library's C artifacts with `cargo build --lib [--release]` into the target dir of the
-/// running tests, and returns the profile directory that holds them. Besides `libtbasis.so`
-/// (Linux), build.rs links the soname to it there, so that programs linked against it run.
+/// Builds the C artifacts with `cargo build --lib [--release]` at the root, into the target dir of
+/// the running tests, and returns the profile directory that holds them. That command builds the
+/// workspace's default members, both C libraries, as `cargo build --release` does for a user.
+/// Beside each `.so` (Linux), its build script links the soname to it, so that programs linked
+/// against it run.
 pub fn build_library(release: bool) -> PathBuf {
     let target_dir = profile_dir().parent().expect("target/<profile>").to_path_buf();
     let mut build = Command::new(env!("CARGO"));
@@ -46,12 +49,13 @@ pub fn library_dir() -> PathBuf {
     BUILT.get_or_init(|| build_library(release())).clone()
 }
 
-/// The ABI name build.rs gives the shared library.
-pub fn soname() -> String {
+/// The ABI name the build scripts (`packaging/soname.rs`) give the shared library `lib{name}.so`
+/// (`tbasis`, `tbasis_mikktspace`), whose packages have this one's version.
+pub fn soname(name: &str) -> String {
     let (major, minor) = (env!("CARGO_PKG_VERSION_MAJOR"), env!("CARGO_PKG_VERSION_MINOR"));
     if major == "0" {
-        format!("libtbasis.so.0.{minor}")
+        format!("lib{name}.so.0.{minor}")
     } else {
-        format!("libtbasis.so.{major}")
+        format!("lib{name}.so.{major}")
     }
 }

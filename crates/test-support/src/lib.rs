@@ -17,3 +17,7 @@ pub mod proptest_config;
 pub mod run;
 pub mod scenes;
 pub mod shapes;
+
+/// mikktspace.c's own callback interface (the crate mikktspace-sys), for tests that call it
+/// directly: `crates/tbasis/tests/geometry.rs` holds the `Geometry` trait to it.
+pub use mikktspace_sys;

@@ -181,12 +181,12 @@ const VARIANT_SOURCES: [&str; 8] = [
 ];
 
 /// A smooth height field `z(x, y)`, so that the diagonal a quad is split along matters.
-fn height(x: f32, y: f32) -> f32 {
+pub fn height(x: f32, y: f32) -> f32 {
     0.3 * (0.7 * x).sin() * (0.5 * y).cos()
 }
 
 /// Its unit normal.
-fn height_normal(x: f32, y: f32) -> [f32; 3] {
+pub fn height_normal(x: f32, y: f32) -> [f32; 3] {
     let dx = 0.3 * 0.7 * (0.7 * x).cos() * (0.5 * y).cos();
     let dy = -0.3 * 0.5 * (0.7 * x).sin() * (0.5 * y).sin();
     let n = [-dx, -dy, 1.0];

@@ -39,11 +39,13 @@ enum Probe {
     PythonVenv,
     /// node, and the glTF Validator's package at [`GLTF_VALIDATOR_MODULE`] in its pinned version.
     GltfValidator,
+    /// mikktspace.c and mikktspace.h as the crate mikktspace-sys vendors them ([`mikktspace_c_dir`]).
+    MikktspaceC,
 }
 
 pub const CORPUS: Need = Need { probe: Probe::Corpus };
 pub const BINUTILS: Need = Need {
-    probe: Probe::Programs(&[("nm", "binutils"), ("readelf", "binutils")]),
+    probe: Probe::Programs(&[("nm", "binutils"), ("readelf", "binutils"), ("ar", "binutils")]),
 };
 pub const CXX: Need = Need {
     probe: Probe::Programs(&[("c++", "g++")]),
@@ -68,6 +70,10 @@ pub const PYTHON_VENV: Need = Need {
 };
 pub const GLTF_VALIDATOR: Need = Need {
     probe: Probe::GltfValidator,
+};
+
+pub const MIKKTSPACE_C: Need = Need {
+    probe: Probe::MikktspaceC,
 };
 
 /// Where `.ci/run` installs the glTF Validator, below the repository root.
@@ -125,6 +131,12 @@ impl Need {
                 .then(|| "the AddressSanitizer and UBSan runtimes of cc (Debian: libasan8, libubsan1)".to_string()),
             Probe::PythonVenv => missing_python_venv(),
             Probe::GltfValidator => missing_gltf_validator(),
+            Probe::MikktspaceC => mikktspace_c_dir().is_none().then(|| {
+                format!(
+                    "mikktspace.c and mikktspace.h of the crate {MIKKTSPACE_SYS}, which `cargo metadata` \
+                     finds once cargo has fetched it (`cargo fetch`)"
+                )
+            }),
         }
     }
 
@@ -226,6 +238,41 @@ fn missing_gltf_validator() -> Option<String> {
             "the Khronos glTF Validator {GLTF_VALIDATOR_VERSION} ({install})"
         )),
     }
+}
+
+/// The package that vendors mikktspace.c, a dependency of tbasis-test-support.
+const MIKKTSPACE_SYS: &str = "mikktspace-sys 0.1.1";
+
+/// The folder holding mikktspace.c and mikktspace.h as the crate mikktspace-sys vendors them (its
+/// `c_code/`), found through `cargo metadata` (offline) of the workspace; `None` when cargo has
+/// not fetched that package. Looked for once per process.
+pub fn mikktspace_c_dir() -> Option<PathBuf> {
+    static DIR: std::sync::OnceLock<Option<PathBuf>> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+        let output = Command::new(cargo)
+            .args([
+                "metadata",
+                "--format-version",
+                "1",
+                "--offline",
+                "--locked",
+                "--manifest-path",
+            ])
+            .arg(repo_dir().join("Cargo.toml"))
+            .stdin(Stdio::null())
+            .stderr(Stdio::null())
+            .output()
+            .ok()?;
+        let json = String::from_utf8(output.stdout).ok()?;
+        // The package's `"manifest_path":"<registry>/mikktspace-sys-0.1.1/Cargo.toml"`.
+        let package = MIKKTSPACE_SYS.replace(' ', "-");
+        let end = json.find(&format!("/{package}/Cargo.toml\""))?;
+        let start = json[..end].rfind('"')? + 1;
+        let dir = Path::new(&json[start..end]).join(&package).join("c_code");
+        (dir.join("mikktspace.c").is_file() && dir.join("mikktspace.h").is_file()).then_some(dir)
+    })
+    .clone()
 }
 
 /// Whether an executable file `program` is in a directory of `PATH`.

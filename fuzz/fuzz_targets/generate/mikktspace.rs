@@ -10,7 +10,7 @@ use crate::ffi::tbasis_report;
 use tbasis::{generate, generate_corners, DegeneratePolicy, Options, Output, StridedMut};
 
 use crate::call::describe_report;
-use crate::face_meshes::{first_difference, mikktspace_c, tbasis_calls, FaceMesh};
+use tbasis_test_support::face_meshes::{both, FaceMesh, Run};
 use crate::frames::{check_robust_tangent, dot, length, same_frame, show, unit};
 use crate::packed::Packed;
 
@@ -305,21 +305,28 @@ pub fn check(mesh: &Packed, threads: &[u32]) {
 
 /// `tbasis::mikktspace` (mikktspace.c's callback interface) against mikktspace.c on the mesh's
 /// triangles as faces at the default threshold, and on them paired into quads (`(a, b, c)`,
-/// `(a, c, d)` in a row) at 90 degrees: the same return value and `setTSpace` calls, a NaN
-/// matching any NaN.
+/// `(a, c, d)` in a row) at 90 degrees on each thread count: the same return value and set calls,
+/// a NaN matching any NaN.
 fn check_face_interface(mesh: &Packed, threads: &[u32]) {
     let (Some(texcoords), Some(_)) = (mesh.texcoords.as_deref(), mesh.reference(false)) else {
         return;
     };
-    let corners: Vec<usize> = (0..mesh.corner_count()).map(|c| mesh.corner_vertex(c)).collect();
-    for (quads, threshold) in [(false, None), (true, Some(90.0))] {
-        let vertices = [&mesh.positions[..], &mesh.normals[..]];
+    let corners: Vec<u32> = (0..mesh.corner_count()).map(|c| mesh.corner_vertex(c) as u32).collect();
+    let vertices = [&mesh.positions[..], &mesh.normals[..]];
+    let runs = |quads: bool| -> Vec<Run> {
+        match quads {
+            false => vec![Run::Default],
+            true => threads.iter().map(|&threads| Run::With(90.0, threads)).collect(),
+        }
+    };
+    for quads in [false, true] {
         let faces = FaceMesh::from_triangles(String::new(), vertices, texcoords, &corners, quads);
-        let reference = mikktspace_c(&faces, threshold);
-        for &threads in threads {
-            let ours = tbasis_calls(&faces, threshold, threads);
-            if let Some(difference) = first_difference(&ours, &reference) {
-                mismatch(mesh, &Options::mikktspace(), format!("faces, quads {quads}, {threads} threads: {difference}"));
+        for run in runs(quads) {
+            let [reference, ours] = both(&faces, run);
+            if ours != reference {
+                let k = ours.1.iter().zip(&reference.1).position(|(a, b)| a != b);
+                let message = format!("faces (quads {quads}, {run:?}): returned {}, mikktspace.c {}; first differing call {k:?}", ours.0, reference.0);
+                mismatch(mesh, &Options::mikktspace(), message);
             }
         }
     }
