@@ -124,18 +124,20 @@ fn run_spawning<P: Send, R: Send>(
     let Some(first) = parts.next() else {
         return;
     };
+    // One part, the usual case on small meshes and one thread: no slots to build.
+    let Some(second) = parts.next() else {
+        return each(job(first));
+    };
     // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
     // nothing.
     let mut others = 0;
+    let mut pending = Some(second);
     let slots: [Mutex<Option<P>>; MAX_RANGES - 1] = core::array::from_fn(|_| {
-        let part = parts.next();
+        let part = pending.take().or_else(|| parts.next());
         others += usize::from(part.is_some());
         Mutex::new(part)
     });
     assert!(parts.next().is_none(), "more than MAX_RANGES parts");
-    if others == 0 {
-        return each(job(first));
-    }
     let slots = &slots[..others];
     let take = |slot: &Mutex<Option<P>>| {
         let part = slot.lock().unwrap_or_else(PoisonError::into_inner).take();
