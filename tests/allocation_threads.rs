@@ -49,6 +49,8 @@ mod fault;
 #[allow(dead_code, non_camel_case_types, unused_imports)]
 #[path = "../src/ffi.rs"]
 mod ffi;
+#[path = "../src/guard.rs"]
+mod guard;
 #[allow(dead_code, non_camel_case_types)]
 #[path = "../src/status.rs"]
 mod status;
