@@ -6,6 +6,8 @@
 
 // The C boundary's own source, compiled in to count what it allocates (the C library has no Rust
 // interface).
+#[path = "common/c_calls.rs"]
+mod c_calls;
 #[allow(dead_code)]
 #[path = "../src/codes.rs"]
 mod codes;
@@ -20,6 +22,7 @@ mod guard;
 #[path = "../src/status.rs"]
 mod status;
 
+use c_calls::{c_mesh, Entry};
 use tbasis_test_support::alloc_count::{allocations, fail_allocation, Counting};
 use tbasis_test_support::cases::{all_uvs_equal, mirror_fold, quantized_uv_sphere, sphere_poles, unit_quad, Case};
 use tbasis_test_support::shapes::Poles;
@@ -122,42 +125,21 @@ fn each_allocation_of_mikktspace_may_fail_and_the_call_says_so() {
     fail_each_allocation(&policies.map(|policy| (TBASIS_METHOD_MIKKTSPACE, policy)), small_cases);
 }
 
-/// A C entry point writing into the given elements, returning its status.
-type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
-
 /// For each `(method, policy)`, on `cases`, per vertex and per corner: for each `k` up
 /// to the number of allocations a successful call makes, the call whose `k`-th allocation fails
 /// returns `TBASIS_ERROR_OUT_OF_MEMORY` and writes no output byte.
 fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Case>) {
-    use std::ptr::null_mut;
-
     const UNTOUCHED: f32 = -7.5;
     let (mut failed, mut calls) = (0, 0);
     for &(method, policy) in combinations {
         for case in cases() {
             let indices = case.indices.as_ref().unwrap();
             let mesh = c_mesh(&case);
-            let options = ffi::tbasis_options {
-                method,
-                degenerate_policy: policy,
-                flags: 0,
-                threads: 1,
-                degenerate_threshold: 0.0,
-                scratch: null_mut(),
-                scratch_size: 0,
-            };
-            let per_vertex = |tangents: &mut [[f32; 4]]| {
-                let output = ffi::tbasis_output {
-                    tangents: tangents.as_mut_ptr().cast(),
-                    tangents_stride: 16,
-                    bitangents: null_mut(),
-                    bitangents_stride: 0,
-                };
-                unsafe { ffi::tbasis_generate(&mesh, &options, &output, null_mut()) }
-            };
-            let per_corner = |corners: &mut [[f32; 4]]| unsafe {
-                ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut())
-            };
+            let options = c_calls::options(method, policy, 1);
+            let (per_vertex, per_corner) = (
+                c_calls::per_vertex(&mesh, &options),
+                c_calls::per_corner(&mesh, &options),
+            );
             let entries: [(&str, &Entry, usize); 2] = [
                 ("tbasis_generate", &per_vertex, case.vertex_count()),
                 ("tbasis_generate_corners", &per_corner, indices.len()),
@@ -257,22 +239,5 @@ fn each_allocation_of_a_seam_split_may_fail_and_the_call_says_so() {
             new_indices.iter().chain(&sources).all(|&x| x == UNTOUCHED) && appended == usize::MAX,
             "allocation {k} of {made} failed, yet an output was written"
         );
-    }
-}
-
-/// `case` as the C ABI reads it: packed arrays with texture coordinates, 32-bit indices.
-fn c_mesh(case: &Case) -> ffi::tbasis_mesh {
-    let indices = case.indices.as_ref().expect("an indexed case");
-    ffi::tbasis_mesh {
-        vertex_count: case.vertex_count(),
-        positions: case.positions.as_ptr().cast(),
-        positions_stride: 12,
-        normals: case.normals.as_ptr().cast(),
-        normals_stride: 12,
-        texcoords: case.texcoords.as_ref().expect("texture coordinates").as_ptr().cast(),
-        texcoords_stride: 8,
-        indices: indices.as_ptr().cast(),
-        index_count: indices.len(),
-        index_type: codes::TBASIS_INDEX_U32,
     }
 }

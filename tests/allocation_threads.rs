@@ -46,6 +46,8 @@ mod codes;
 #[path = "../src/fault.rs"]
 mod fault;
 // Without the harness its unit test is compiled but not run: its import goes unused.
+#[path = "common/c_calls.rs"]
+mod c_calls;
 #[allow(dead_code, non_camel_case_types, unused_imports)]
 #[path = "../src/ffi.rs"]
 mod ffi;
@@ -55,8 +57,7 @@ mod guard;
 #[path = "../src/status.rs"]
 mod status;
 
-use std::ptr::null_mut;
-
+use c_calls::{c_mesh, Entry};
 use codes::*;
 use tbasis_test_support::alloc_count::{
     allocations, fail_allocation, fail_other_allocation, mark_calling_thread, other_allocations, record_backtraces,
@@ -157,26 +158,6 @@ fn test_grid(shuffled: bool) -> Case {
     }
     case
 }
-
-/// `case` as the C ABI reads it: packed arrays with texture coordinates, 32-bit indices.
-fn c_mesh(case: &Case) -> ffi::tbasis_mesh {
-    let indices = case.indices.as_ref().expect("an indexed case");
-    ffi::tbasis_mesh {
-        vertex_count: case.vertex_count(),
-        positions: case.positions.as_ptr().cast(),
-        positions_stride: 12,
-        normals: case.normals.as_ptr().cast(),
-        normals_stride: 12,
-        texcoords: case.texcoords.as_ref().expect("texture coordinates").as_ptr().cast(),
-        texcoords_stride: 8,
-        indices: indices.as_ptr().cast(),
-        index_count: indices.len(),
-        index_type: TBASIS_INDEX_U32,
-    }
-}
-
-/// A C entry point writing into the given elements, returning its status.
-type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
 
 /// Records what `call` allocates, then fails each of the library's allocations in turn: the call
 /// must return `TBASIS_ERROR_OUT_OF_MEMORY` and leave all `count` output elements untouched.
@@ -313,27 +294,11 @@ fn main() {
         let corners = case.indices.as_ref().unwrap().len();
         for threads in [1u32, 2] {
             for (method, policy, name) in COMBINATIONS {
-                let options = ffi::tbasis_options {
-                    method,
-                    degenerate_policy: policy,
-                    flags: 0,
-                    threads,
-                    degenerate_threshold: 0.0,
-                    scratch: null_mut(),
-                    scratch_size: 0,
-                };
-                let per_vertex = |tangents: &mut [[f32; 4]]| {
-                    let output = ffi::tbasis_output {
-                        tangents: tangents.as_mut_ptr().cast(),
-                        tangents_stride: 16,
-                        bitangents: null_mut(),
-                        bitangents_stride: 0,
-                    };
-                    unsafe { ffi::tbasis_generate(&mesh, &options, &output, null_mut()) }
-                };
-                let per_corner = |corners: &mut [[f32; 4]]| unsafe {
-                    ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut())
-                };
+                let options = c_calls::options(method, policy, threads);
+                let (per_vertex, per_corner) = (
+                    c_calls::per_vertex(&mesh, &options),
+                    c_calls::per_corner(&mesh, &options),
+                );
                 let entries: [(&str, &Entry, usize); 2] = [
                     ("tbasis_generate", &per_vertex, case.vertex_count()),
                     ("tbasis_generate_corners", &per_corner, corners),

@@ -3,6 +3,7 @@
 #![forbid(unsafe_code)]
 
 use crate::kernel::error::Error;
+use crate::kernel::memory::vec_with_capacity;
 use crate::pipelines::mikktspace::faces_interface::{self, FaceMesh};
 
 /// The interface by which the generator reads a mesh and hands back its tangent spaces: the same
@@ -181,9 +182,9 @@ fn read<I: Geometry>(geometry: &I) -> Result<Read, Error> {
         return Err(Error::SizeOverflow);
     }
     let mut read = Read {
-        positions: try_with_capacity(slots)?,
-        normals: try_with_capacity(slots)?,
-        texcoords: try_with_capacity(slots)?,
+        positions: vec_with_capacity(slots)?,
+        normals: vec_with_capacity(slots)?,
+        texcoords: vec_with_capacity(slots)?,
         index_zero: (faces[0].0 != 0).then(|| geometry.position(0, 0)),
         faces,
     };
@@ -201,11 +202,4 @@ fn read<I: Geometry>(geometry: &I) -> Result<Read, Error> {
         }
     }
     Ok(read)
-}
-
-/// An empty vector with room for `n` elements, or [`Error::OutOfMemory`].
-fn try_with_capacity<T>(n: usize) -> Result<Vec<T>, Error> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory)?;
-    Ok(v)
 }

@@ -123,6 +123,20 @@ pub(crate) fn zeroed_bytes(len: usize) -> Result<Vec<u8>, Error> {
     try_zeroed_bytes(len).ok_or(Error::OutOfMemory)
 }
 
+/// An empty vector with room for `n` elements, or [`Error::OutOfMemory`].
+pub(crate) fn vec_with_capacity<T>(n: usize) -> Result<Vec<T>, Error> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory)?;
+    Ok(v)
+}
+
+/// `n` copies of `value`, or [`Error::OutOfMemory`].
+pub(crate) fn vec_filled<T: Clone>(n: usize, value: T) -> Result<Vec<T>, Error> {
+    let mut v = vec_with_capacity(n)?;
+    v.resize(n, value);
+    Ok(v)
+}
+
 /// Runs `job` on the working memory of one call: the first `size(Place::Caller)` bytes of the
 /// caller's `scratch` ([`Error::ScratchTooSmall`] when it has fewer), or `size(Place::Heap)`
 /// fresh zeroed bytes; `None` from `size` is [`Error::SizeOverflow`].

@@ -14,7 +14,7 @@ use super::attributes::Attributes;
 use super::tspace::{threshold_cosine, Full};
 use super::{copy_to_degenerate, scratch_bytes, solve as solve_triangles, Buffers, FaceExtras, NONE};
 use crate::kernel::error::Error;
-use crate::kernel::memory::{zeroed_bytes, Arena};
+use crate::kernel::memory::{vec_filled, vec_with_capacity, zeroed_bytes, Arena};
 use crate::kernel::mesh::Mesh;
 use crate::kernel::report::Report;
 use crate::kernel::vector::{equal, Vec3};
@@ -66,8 +66,8 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     let mut memory = zeroed_bytes(scratch_bytes(slot_count, corner_count).ok_or(Error::SizeOverflow)?)?;
     let mut buffers = Buffers::take(&mut Arena::Carve(&mut memory), slot_count, corner_count)?;
     buffers.welded.copy_from_slice(&triangles.slots);
-    let mut corners: Vec<Full> = filled(corner_count, Full::DEFAULT)?;
-    let mut magnitudes = filled(corner_count / 3, [0.0f32; 2])?;
+    let mut corners: Vec<Full> = vec_filled(corner_count, Full::DEFAULT)?;
+    let mut magnitudes = vec_filled(corner_count / 3, [0.0f32; 2])?;
     let mut extras = FaceExtras {
         face_of: &triangles.face_of,
         magnitudes: &mut magnitudes,
@@ -88,7 +88,7 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     //    Without quads, slots are corners: those no group reaches keep the initial space and
     //    orientation 0 (the scratch starts zeroed).
     let mut out = if slot_count == corner_count {
-        let mut preserving = with_capacity(slot_count)?;
+        let mut preserving = vec_with_capacity(slot_count)?;
         preserving.extend_from_slice(buffers.orientation);
         Spaces {
             spaces: corners,
@@ -101,7 +101,7 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     // 4. Degenerate triangles copy a good corner's space (DegenEpilogue), except in a quad whose
     //    other triangle is good: there the slot the good one lacks copies the one of its slots
     //    at the same position.
-    let mut degenerate: Vec<bool> = filled(corner_count / 3, false)?;
+    let mut degenerate: Vec<bool> = vec_filled(corner_count / 3, false)?;
     for &t in &buffers.order[solved.good..corner_count / 3] {
         degenerate[t as usize] = true;
     }
@@ -147,10 +147,10 @@ fn assemble_slots(
     slot_count: usize,
 ) -> Result<Spaces, Error> {
     let mut out = Spaces {
-        spaces: filled(slot_count, Full::DEFAULT)?,
-        preserving: filled(slot_count, 0u8)?,
+        spaces: vec_filled(slot_count, Full::DEFAULT)?,
+        preserving: vec_filled(slot_count, 0u8)?,
     };
-    let mut writer: Vec<u32> = filled(slot_count, NONE)?;
+    let mut writer: Vec<u32> = vec_filled(slot_count, NONE)?;
     for (&t, groups) in buffers.order[..good].iter().zip(&*buffers.assigned) {
         for (k, &group) in groups.iter().enumerate().filter(|&(_, &g)| g != NONE) {
             let corner = 3 * t as usize + k;
@@ -195,9 +195,9 @@ impl Triangles {
             .map(|(&(_, first), end)| end - first as usize - 2)
             .sum();
         let mut triangles = Triangles {
-            slots: with_capacity(3 * triangle_count)?,
-            values: with_capacity(3 * triangle_count)?,
-            face_of: with_capacity(triangle_count)?,
+            slots: vec_with_capacity(3 * triangle_count)?,
+            values: vec_with_capacity(3 * triangle_count)?,
+            face_of: vec_with_capacity(triangle_count)?,
         };
         for (&(face, first), end) in mesh.faces.iter().zip(ends) {
             let squared = |a: Vec3, b: Vec3| {
@@ -236,18 +236,4 @@ impl Triangles {
         }
         Ok(triangles)
     }
-}
-
-/// An empty vector with room for `n` elements, or [`Error::OutOfMemory`].
-fn with_capacity<T>(n: usize) -> Result<Vec<T>, Error> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory)?;
-    Ok(v)
-}
-
-/// `n` copies of `value`, or [`Error::OutOfMemory`].
-fn filled<T: Clone>(n: usize, value: T) -> Result<Vec<T>, Error> {
-    let mut v = with_capacity(n)?;
-    v.resize(n, value);
-    Ok(v)
 }
