@@ -4,7 +4,7 @@
 
 use crate::kernel::error::Error;
 use crate::kernel::memory::vec_with_capacity;
-use crate::pipelines::mikktspace::faces_interface::{self, FaceMesh};
+use crate::pipelines::mikktspace::faces_interface::{self, face_slots, FaceMesh};
 
 /// The interface by which the generator reads a mesh and hands back its tangent spaces: the same
 /// methods, with the same signatures, as the `mikktspace` crate's trait.
@@ -126,14 +126,8 @@ pub fn generate_tangents_with<I: Geometry>(geometry: &mut I, settings: &Settings
     let Ok(out) = faces_interface::solve(&mesh, settings.angular_threshold, threads) else {
         return false;
     };
-    let slot_ends = read
-        .faces
-        .iter()
-        .skip(1)
-        .map(|&(_, first)| first as usize)
-        .chain([out.spaces.len()]);
-    for (&(face, first), end) in read.faces.iter().zip(slot_ends) {
-        for (vert, slot) in (first as usize..end).enumerate() {
+    for (face, slots) in face_slots(&read.faces, out.spaces.len()) {
+        for (vert, slot) in slots.enumerate() {
             let (space, preserving) = (&out.spaces[slot], out.preserving[slot] != 0);
             geometry.set_tangent(
                 space.s,
@@ -188,14 +182,8 @@ fn read<I: Geometry>(geometry: &I) -> Result<Read, Error> {
         index_zero: (faces[0].0 != 0).then(|| geometry.position(0, 0)),
         faces,
     };
-    let slot_ends = read
-        .faces
-        .iter()
-        .skip(1)
-        .map(|&(_, first)| first as usize)
-        .chain([slots]);
-    for (&(face, first), end) in read.faces.iter().zip(slot_ends) {
-        for vert in 0..end - first as usize {
+    for (face, range) in face_slots(&read.faces, slots) {
+        for vert in 0..range.len() {
             read.positions.push(geometry.position(face as usize, vert));
             read.normals.push(geometry.normal(face as usize, vert));
             read.texcoords.push(geometry.tex_coord(face as usize, vert));

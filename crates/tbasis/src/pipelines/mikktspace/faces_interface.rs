@@ -9,6 +9,7 @@
 #![forbid(unsafe_code)]
 
 use core::cmp::Ordering;
+use core::ops::Range;
 
 use super::attributes::Attributes;
 use super::tspace::{threshold_cosine, Full};
@@ -31,6 +32,22 @@ pub(crate) struct FaceMesh<'a> {
     /// Face 0's vertex 0's position when face 0 has neither 3 nor 4 vertices (see
     /// [`Attributes::index_zero`]).
     pub index_zero: Option<Vec3>,
+}
+
+/// Each face of `faces` (see [`FaceMesh::faces`]) with the range of its slots, `slot_count` in all.
+pub(crate) fn face_slots(
+    faces: &[(u32, u32)],
+    slot_count: usize,
+) -> impl Iterator<Item = (u32, Range<usize>)> + Clone + '_ {
+    let ends = faces
+        .iter()
+        .skip(1)
+        .map(|&(_, first)| first as usize)
+        .chain([slot_count]);
+    faces
+        .iter()
+        .zip(ends)
+        .map(|(&(face, first), end)| (face, first as usize..end))
 }
 
 /// Per slot: its tangent space (`setTSpace`'s tangent, bitangent and magnitudes) and whether the
@@ -181,35 +198,24 @@ impl Triangles {
     /// Splits each quad along its shorter diagonal in texture space, or in position when those
     /// are equal (the 0-2 diagonal unless 1-3 is strictly shorter), as mikktspace.c does.
     fn split(mesh: &FaceMesh) -> Result<Triangles, Error> {
-        let slot_count = mesh.positions.len();
-        let ends = mesh
-            .faces
-            .iter()
-            .skip(1)
-            .map(|&(_, first)| first as usize)
-            .chain([slot_count]);
-        let triangle_count: usize = mesh
-            .faces
-            .iter()
-            .zip(ends.clone())
-            .map(|(&(_, first), end)| end - first as usize - 2)
-            .sum();
+        let faces = face_slots(mesh.faces, mesh.positions.len());
+        let triangle_count: usize = faces.clone().map(|(_, slots)| slots.len() - 2).sum();
         let mut triangles = Triangles {
             slots: vec_with_capacity(3 * triangle_count)?,
             values: vec_with_capacity(3 * triangle_count)?,
             face_of: vec_with_capacity(triangle_count)?,
         };
-        for (&(face, first), end) in mesh.faces.iter().zip(ends) {
+        for (face, slots) in faces {
             let squared = |a: Vec3, b: Vec3| {
                 let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
                 d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
             };
-            let slot = |vert: usize| first as usize + vert;
+            let slot = |vert: usize| slots.start + vert;
             let uv = |vert: usize| {
                 let [u, v] = mesh.texcoords[slot(vert)];
                 [u, v, 1.0]
             };
-            let split: &[[usize; 3]] = if end - first as usize == 3 {
+            let split: &[[usize; 3]] = if slots.len() == 3 {
                 &[[0, 1, 2]]
             } else {
                 let (texture_02, texture_13) = (squared(uv(0), uv(2)), squared(uv(1), uv(3)));
