@@ -126,7 +126,7 @@ fn run_spawning<P: Send, R: Send>(
     };
     // One part, the usual case on small meshes and one thread: no slots to build.
     let Some(second) = parts.next() else {
-        return each(job(first));
+        return each(run_part(&job, first));
     };
     // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
     // nothing.
@@ -149,18 +149,25 @@ fn run_spawning<P: Send, R: Send>(
         for (slot, handle) in slots.iter().zip(&mut handles) {
             if may_spawn() {
                 *handle = std::thread::Builder::new()
-                    .spawn_scoped(scope, move || job(take(slot)))
+                    .spawn_scoped(scope, move || run_part(job, take(slot)))
                     .ok();
             }
         }
-        each(job(first));
+        each(run_part(job, first));
         for (slot, handle) in slots.iter().zip(&mut handles) {
             each(match handle.take() {
                 Some(handle) => handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
-                None => job(take(slot)),
+                None => run_part(job, take(slot)),
             });
         }
     });
+}
+
+/// One part's work: a function of its own, so that the job's code is compiled once, not at each
+/// of [`run_spawning`]'s four places that may run a part.
+#[inline(never)]
+fn run_part<P, R>(job: &impl Fn(P) -> R, part: P) -> R {
+    job(part)
 }
 
 /// Runs `a` on the calling thread and `b` beside it (after `a`, on the calling thread, when no
