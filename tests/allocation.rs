@@ -22,7 +22,7 @@ mod guard;
 #[path = "../src/status.rs"]
 mod status;
 
-use c_calls::{c_mesh, Entry};
+use c_calls::{assert_out_of_memory, c_mesh, Entry, UNTOUCHED};
 use tbasis_test_support::alloc_count::{allocations, fail_allocation, Counting};
 use tbasis_test_support::cases::{all_uvs_equal, mirror_fold, quantized_uv_sphere, sphere_poles, unit_quad, Case};
 use tbasis_test_support::shapes::Poles;
@@ -129,7 +129,6 @@ fn each_allocation_of_mikktspace_may_fail_and_the_call_says_so() {
 /// to the number of allocations a successful call makes, the call whose `k`-th allocation fails
 /// returns `TBASIS_ERROR_OUT_OF_MEMORY` and writes no output byte.
 fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Case>) {
-    const UNTOUCHED: f32 = -7.5;
     let (mut failed, mut calls) = (0, 0);
     for &(method, policy) in combinations {
         for case in cases() {
@@ -163,15 +162,7 @@ fn fail_each_allocation(combinations: &[(u32, u32)], cases: impl Fn() -> Vec<Cas
                     fail_allocation(Some(allocations() + k));
                     let status = call(&mut output);
                     fail_allocation(None);
-                    assert_eq!(
-                        status,
-                        status::TBASIS_ERROR_OUT_OF_MEMORY,
-                        "{what}: allocation {k} of {made} failed"
-                    );
-                    assert!(
-                        output.iter().flatten().all(|&x| x == UNTOUCHED),
-                        "{what}: allocation {k} of {made} failed, yet the output was written"
-                    );
+                    assert_out_of_memory(status, &output, &format!("{what}: allocation {k} of {made}"));
                 }
                 failed += made;
                 calls += 1;

@@ -57,7 +57,7 @@ mod guard;
 #[path = "../src/status.rs"]
 mod status;
 
-use c_calls::{c_mesh, Entry};
+use c_calls::{assert_out_of_memory, c_mesh, Entry, UNTOUCHED};
 use codes::*;
 use tbasis_test_support::alloc_count::{
     allocations, fail_allocation, fail_other_allocation, mark_calling_thread, other_allocations, record_backtraces,
@@ -71,9 +71,6 @@ static GLOBAL: Counting = Counting;
 
 /// Quads a side of the test grid: 128 x 128 quads, 32768 triangles, two workers' worth.
 const SIDE: usize = 128;
-
-/// A value no call writes.
-const UNTOUCHED: f32 = -7.5;
 
 /// Where an allocation was made.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -212,15 +209,7 @@ fn fail_each_allocation(what: &str, call: &Entry, count: usize) -> Tally {
         } else {
             "the workers'"
         };
-        assert_eq!(
-            status,
-            status::TBASIS_ERROR_OUT_OF_MEMORY,
-            "{what}: {thread} allocation {k} failed"
-        );
-        assert!(
-            output.iter().flatten().all(|&x| x == UNTOUCHED),
-            "{what}: {thread} allocation {k} failed, yet the output was written"
-        );
+        assert_out_of_memory(status, &output, &format!("{what}: {thread} allocation {k}"));
     }
     tally
 }

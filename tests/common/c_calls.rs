@@ -7,7 +7,7 @@ use std::ptr::null_mut;
 
 use tbasis_test_support::cases::Case;
 
-use crate::{codes, ffi};
+use crate::{codes, ffi, status};
 
 /// A C entry point writing into the given elements, returning its status.
 pub type Entry<'a> = dyn Fn(&mut [[f32; 4]]) -> u32 + 'a;
@@ -66,4 +66,17 @@ pub fn per_corner<'a>(
 ) -> impl Fn(&mut [[f32; 4]]) -> u32 + 'a {
     // SAFETY: the mesh's arrays outlive the call; `corners` holds a frame per index.
     move |corners| unsafe { ffi::tbasis_generate_corners(mesh, options, corners.as_mut_ptr().cast(), 16, null_mut()) }
+}
+
+/// What an output element holds before a call that must not write it.
+pub const UNTOUCHED: f32 = -7.5;
+
+/// Asserts that a call whose allocation failed (`failed`, for the message) returned
+/// `TBASIS_ERROR_OUT_OF_MEMORY` and left every element of `output` [`UNTOUCHED`].
+pub fn assert_out_of_memory(status: u32, output: &[[f32; 4]], failed: &str) {
+    assert_eq!(status, status::TBASIS_ERROR_OUT_OF_MEMORY, "{failed} failed");
+    assert!(
+        output.iter().flatten().all(|&x| x == UNTOUCHED),
+        "{failed} failed, yet the output was written"
+    );
 }

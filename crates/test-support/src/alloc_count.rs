@@ -120,13 +120,7 @@ fn count_one() -> bool {
     }
     let calling = CALLING.try_with(Cell::get).unwrap_or(false);
     let (number, succeeds) = if calling {
-        let number = ALLOCATIONS
-            .try_with(|count| {
-                let number = count.get();
-                count.set(number + 1);
-                number
-            })
-            .unwrap_or(usize::MAX - 1);
+        let number = next_own_number();
         (
             number,
             FAILING.try_with(|failing| failing.get() != number).unwrap_or(true),
@@ -134,13 +128,7 @@ fn count_one() -> bool {
     } else {
         // Each thread's own count goes on too, as before: a test that reads `allocations` on an
         // unmarked thread sees its allocations.
-        let own = ALLOCATIONS
-            .try_with(|count| {
-                let number = count.get();
-                count.set(number + 1);
-                number
-            })
-            .unwrap_or(usize::MAX - 1);
+        let own = next_own_number();
         let number = OTHER_ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
         let own_fails = FAILING.try_with(|failing| failing.get() == own).unwrap_or(false);
         (number, !own_fails && OTHER_FAILING.load(Ordering::SeqCst) != number)
@@ -181,4 +169,15 @@ unsafe impl GlobalAlloc for Counting {
         }
         System.realloc(ptr, layout, new_size)
     }
+}
+
+/// The calling thread's next allocation number (`usize::MAX - 1` while the thread is torn down).
+fn next_own_number() -> usize {
+    ALLOCATIONS
+        .try_with(|count| {
+            let number = count.get();
+            count.set(number + 1);
+            number
+        })
+        .unwrap_or(usize::MAX - 1)
 }
