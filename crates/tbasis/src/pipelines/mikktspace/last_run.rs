@@ -9,7 +9,9 @@
 //! them (`lo`, `hi`). The largest smaller index `i0*` is at least `L`, the largest smaller `lo`
 //! over the edges, and both ends of an edge of that run have an index of at least `i0*`, so a `hi`
 //! of at least `L`: only those vertices' indices are needed, and the splitting is replayed on just
-//! the grid cells that hold them.
+//! the grid cells that hold them. When those are many, a probe first replays the cells of the last
+//! good triangles' vertices: the smaller index of any edge is at most `i0*` too, so the largest one
+//! among their edges raises the bound, and with it the `hi` a vertex needs.
 #![forbid(unsafe_code)]
 
 use super::attributes::Attributes;
@@ -21,6 +23,12 @@ use super::NONE;
 const REPLAY_SHARE: usize = 8;
 const REPLAY_FLOOR: usize = 4096;
 
+/// How many of the last good triangles the probe replays: their edges have the largest `hi`.
+const PROBE_TRIANGLES: usize = 64;
+
+/// In `lo`, once it has given `L`: a vertex of the probe whose index is not known yet.
+const PROBED: u32 = NONE - 1;
+
 /// Working memory: one word per welded vertex in each of `lo` and `hi`, and the weld's.
 pub(crate) struct Memory<'a> {
     pub lo: &'a mut [u32],
@@ -30,9 +38,9 @@ pub(crate) struct Memory<'a> {
 
 /// True when the last run of mikktspace.c's edge sort holds at most the two sides of one edge.
 /// `welded` are the corners' welded vertices, `class` each vertex's, `source` a vertex of each
-/// welded vertex, `ids` the
-/// welded vertices of each good triangle (those mikktspace.c pairs the edges of). False when it
-/// does not, or when finding out would cost a large part of the full weld.
+/// welded vertex, `ids` the welded vertices of each good triangle (those mikktspace.c pairs the
+/// edges of). False when it does not, or when finding out would cost a large part of the full
+/// weld.
 pub(crate) fn is_trivial(
     attributes: &Attributes,
     threads: u32,
@@ -42,7 +50,11 @@ pub(crate) fn is_trivial(
     ids: &[[u32; 3]],
     memory: Memory,
 ) -> bool {
-    let Memory { lo, hi, weld: scratch } = memory;
+    let Memory {
+        lo,
+        hi,
+        weld: mut scratch,
+    } = memory;
     lo.fill(NONE);
     hi.fill(0);
     for (c, &id) in welded.iter().enumerate() {
@@ -50,55 +62,117 @@ pub(crate) fn is_trivial(
         lo[id] = lo[id].min(v);
         hi[id] = hi[id].max(v);
     }
-    let edges = || {
-        ids.iter()
-            .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
-            .map(|(a, b)| (a as usize, b as usize))
-    };
-    let Some(lowest) = edges().map(|(a, b)| lo[a].min(lo[b])).max() else {
+    let Some(lowest) = edges(ids).map(|(a, b)| lo[a].min(lo[b])).max() else {
         return true;
     };
-    let candidate = |id: usize| hi[id] >= lowest;
-    // Their cells hold at least as many corners as they are: past the limit, stop before the grid.
-    let candidates = hi.iter().filter(|&&h| h >= lowest).count();
-    if candidates > (welded.len() / REPLAY_SHARE).max(REPLAY_FLOOR) {
-        return false;
-    }
-
-    // The exact index of every candidate, in `lo`.
-    let vertex_of = |c: usize| source[welded[c] as usize];
-    let wanted = Wanted {
-        vertex: &|v: u32| class[v as usize] != NONE && candidate(class[v as usize] as usize),
-        corner_limit: (welded.len() / REPLAY_SHARE).max(REPLAY_FLOOR),
-    };
-    let replayed = weld::representatives(
+    let search = Search {
         attributes,
         threads,
-        welded.len(),
-        &vertex_of,
-        wanted,
-        scratch,
-        |c, first| {
-            let id = welded[c as usize] as usize;
-            if candidate(id) {
-                lo[id] = attributes.value_of(first as usize);
-            }
-        },
-    );
-    if replayed.is_none() {
-        return false;
+        welded,
+        class,
+        source,
+        ids,
+        hi,
+        corner_limit: (welded.len() / REPLAY_SHARE).max(REPLAY_FLOOR),
+    };
+    if !search.too_many(lowest) {
+        if let Some(trivial) = search.settle(lowest, lo, &mut scratch) {
+            return trivial;
+        }
     }
-    let index = &*lo;
-    let both = |&(a, b): &(usize, usize)| candidate(a) && candidate(b);
-    let last = edges()
-        .filter(both)
-        .map(|(a, b)| index[a].min(index[b]))
-        .max()
-        .unwrap_or(0);
-    let mut run = edges()
-        .filter(|e| both(e) && index[e.0].min(index[e.1]) == last)
-        .map(|(a, b)| index[a].max(index[b]));
-    let first = run.next();
-    let second = run.next();
-    run.next().is_none() && (second.is_none() || second == first)
+    let Some(lowest) = search.probe(lowest, lo, &mut scratch) else {
+        return false;
+    };
+    !search.too_many(lowest) && search.settle(lowest, lo, &mut scratch) == Some(true)
+}
+
+/// The edges of the good triangles, as pairs of welded vertices.
+fn edges(ids: &[[u32; 3]]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    ids.iter()
+        .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
+        .map(|(a, b)| (a as usize, b as usize))
+}
+
+/// What the search reads: the mesh, its weld by value, and each welded vertex's `hi`.
+struct Search<'s> {
+    attributes: &'s Attributes<'s>,
+    threads: u32,
+    welded: &'s [u32],
+    class: &'s [u32],
+    source: &'s [u32],
+    ids: &'s [[u32; 3]],
+    hi: &'s [u32],
+    corner_limit: usize,
+}
+
+impl Search<'_> {
+    /// Whether the candidates for a bound `lowest` are more than the replay may take: their cells
+    /// hold at least as many corners as they are, so this stops before the grid.
+    fn too_many(&self, lowest: u32) -> bool {
+        self.hi.iter().filter(|&&h| h >= lowest).count() > self.corner_limit
+    }
+
+    /// `[corner, vertex, representative]` for every corner in the cells of the welded vertices
+    /// `wanted` names, by mikktspace.c's weld (`None` past the corner limit).
+    fn replay<'w>(
+        &self,
+        wanted: &(dyn Fn(usize) -> bool + Sync),
+        scratch: &'w mut WeldScratch,
+    ) -> Option<&'w [[u32; 3]]> {
+        let (class, source, welded) = (self.class, self.source, self.welded);
+        let wanted = Wanted {
+            vertex: &|v: u32| class[v as usize] != NONE && wanted(class[v as usize] as usize),
+            corner_limit: self.corner_limit,
+        };
+        let vertex_of = |c: usize| source[welded[c] as usize];
+        weld::representatives(self.attributes, self.threads, welded.len(), &vertex_of, wanted, scratch)
+    }
+
+    /// The bound `lowest` raised by the exact indices of the last good triangles' vertices
+    /// (written to `lo`); `None` past the corner limit.
+    fn probe(&self, lowest: u32, lo: &mut [u32], scratch: &mut WeldScratch) -> Option<u32> {
+        let last = &self.ids[self.ids.len().saturating_sub(PROBE_TRIANGLES)..];
+        lo.fill(NONE);
+        for &id in last.iter().flatten() {
+            lo[id as usize] = PROBED;
+        }
+        let probed = &*lo;
+        let found = self.replay(&|id| probed[id] != NONE, scratch)?;
+        for &[c, _, first] in found {
+            let id = self.welded[c as usize] as usize;
+            if lo[id] != NONE {
+                lo[id] = self.attributes.value_of(first as usize);
+            }
+        }
+        let mut lowest = lowest;
+        for (a, b) in edges(last) {
+            lowest = lowest.max(lo[a].min(lo[b]));
+        }
+        Some(lowest)
+    }
+
+    /// Whether the last run is trivial, from the exact index of every welded vertex whose `hi` is
+    /// at least `lowest` (a bound at most `i0*`), written to `lo`; `None` past the corner limit.
+    fn settle(&self, lowest: u32, lo: &mut [u32], scratch: &mut WeldScratch) -> Option<bool> {
+        let candidate = |id: usize| self.hi[id] >= lowest;
+        for &[c, _, first] in self.replay(&candidate, scratch)? {
+            let id = self.welded[c as usize] as usize;
+            if candidate(id) {
+                lo[id] = self.attributes.value_of(first as usize);
+            }
+        }
+        let index = &*lo;
+        let both = |&(a, b): &(usize, usize)| candidate(a) && candidate(b);
+        let last = edges(self.ids)
+            .filter(both)
+            .map(|(a, b)| index[a].min(index[b]))
+            .max()
+            .unwrap_or(0);
+        let mut run = edges(self.ids)
+            .filter(|e| both(e) && index[e.0].min(index[e.1]) == last)
+            .map(|(a, b)| index[a].max(index[b]));
+        let first = run.next();
+        let second = run.next();
+        Some(run.next().is_none() && (second.is_none() || second == first))
+    }
 }

@@ -130,23 +130,19 @@ pub(crate) struct Wanted<'w> {
 
 /// mikktspace.c's representative corner of each of the `corner_count` corners (corner `c` of
 /// vertex `vertex_of(c)`) in the grid cells holding a vertex `wanted` names, by replaying
-/// `MergeVertsFast` on those cells alone: cells are welded independently. Calls
-/// `found(corner, representative)` for each. `None` when those cells hold more than
+/// `MergeVertsFast` on those cells alone: cells are welded independently. Returns
+/// `[corner, vertex or NONE, representative]` for each. `None` when those cells hold more than
 /// `wanted.corner_limit` corners (nothing replayed).
-pub(crate) fn representatives(
+pub(crate) fn representatives<'s>(
     attributes: &Attributes,
     threads: u32,
     corner_count: usize,
     vertex_of: &(impl Fn(usize) -> u32 + Sync),
     wanted: Wanted,
-    mut scratch: WeldScratch,
-    mut found: impl FnMut(u32, u32),
-) -> Option<()> {
-    let filled = split_cells(attributes, threads, corner_count, vertex_of, Some(wanted), &mut scratch)?;
-    for &[corner, _, first] in &scratch.entries[..filled] {
-        found(corner, first);
-    }
-    Some(())
+    scratch: &'s mut WeldScratch,
+) -> Option<&'s [[u32; 3]]> {
+    let filled = split_cells(attributes, threads, corner_count, vertex_of, Some(wanted), scratch)?;
+    Some(&scratch.entries[..filled])
 }
 
 /// Steps 1 to 3 of the weld: the grid, then each cell's corners gathered in corner order and split

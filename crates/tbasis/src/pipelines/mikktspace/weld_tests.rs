@@ -133,47 +133,55 @@ fn welding_by_value_finds_the_replayed_weld_or_declines() {
     assert!(by_value > 1000, "{by_value} of 3000 welded by value");
 }
 
+/// What [`last_run::is_trivial`] says about `case` and the truth, from every welded vertex's
+/// index, with the run when they differ; `None` when the weld by value declines or no triangle
+/// is good.
+fn last_run_outcome(case: &Case, attributes: &Attributes) -> Option<(bool, bool, Vec<u32>)> {
+    let v = case.positions.len();
+    let (welded, class, source) = by_value_weld(attributes, &case.indices)?;
+    let count = source.len();
+    let position = |id: u32| attributes.position(source[id as usize]);
+    let ids: Vec<[u32; 3]> = welded
+        .chunks(3)
+        .map(|t| [t[0], t[1], t[2]])
+        .filter(|&[a, b, c]| {
+            !(equal(position(a), position(b)) || equal(position(a), position(c)) || equal(position(b), position(c)))
+        })
+        .collect();
+    if ids.is_empty() {
+        return None;
+    }
+    // The truth, from every welded vertex's index.
+    let (_, _, values) = replayed(attributes, &case.indices);
+    let edges = ids.iter().flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)]);
+    let key = |(a, b): (u32, u32)| {
+        let (x, y) = (values[a as usize], values[b as usize]);
+        (x.min(y), x.max(y))
+    };
+    let last = edges.clone().map(|e| key(e).0).max().unwrap();
+    let run: Vec<u32> = edges.filter(|&e| key(e).0 == last).map(|e| key(e).1).collect();
+    let truly_trivial = run.len() == 1 || (run.len() == 2 && run[0] == run[1]);
+
+    let (mut lo, mut hi) = (vec![0; count], vec![0; count]);
+    let c = case.indices.len();
+    let mut memory = vec![0u8; bytes_of(|a| WeldScratch::take(a, v, c).map(|_| ())).unwrap()];
+    let weld = WeldScratch::take(&mut Arena::Carve(&mut memory), v, c).unwrap();
+    let memory = last_run::Memory {
+        lo: &mut lo,
+        hi: &mut hi,
+        weld,
+    };
+    let said = last_run::is_trivial(attributes, 1, &welded, &class, &source, &ids, memory);
+    Some((said, truly_trivial, run))
+}
+
 #[test]
 fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
     let (mut trivial, mut truly) = (0, 0);
     for_each_case(0xBEEF, |round, case, attributes| {
-        let v = case.positions.len();
-        let Some((welded, class, source)) = by_value_weld(attributes, &case.indices) else {
+        let Some((said, truly_trivial, run)) = last_run_outcome(case, attributes) else {
             return;
         };
-        let count = source.len();
-        let position = |id: u32| attributes.position(source[id as usize]);
-        let ids: Vec<[u32; 3]> = welded
-            .chunks(3)
-            .map(|t| [t[0], t[1], t[2]])
-            .filter(|&[a, b, c]| {
-                !(equal(position(a), position(b)) || equal(position(a), position(c)) || equal(position(b), position(c)))
-            })
-            .collect();
-        if ids.is_empty() {
-            return;
-        }
-        // The truth, from every welded vertex's index.
-        let (_, _, values) = replayed(attributes, &case.indices);
-        let edges = ids.iter().flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)]);
-        let key = |(a, b): (u32, u32)| {
-            let (x, y) = (values[a as usize], values[b as usize]);
-            (x.min(y), x.max(y))
-        };
-        let last = edges.clone().map(|e| key(e).0).max().unwrap();
-        let run: Vec<u32> = edges.filter(|&e| key(e).0 == last).map(|e| key(e).1).collect();
-        let truly_trivial = run.len() == 1 || (run.len() == 2 && run[0] == run[1]);
-
-        let (mut lo, mut hi) = (vec![0; count], vec![0; count]);
-        let c = case.indices.len();
-        let mut memory = vec![0u8; bytes_of(|a| WeldScratch::take(a, v, c).map(|_| ())).unwrap()];
-        let weld = WeldScratch::take(&mut Arena::Carve(&mut memory), v, c).unwrap();
-        let memory = last_run::Memory {
-            lo: &mut lo,
-            hi: &mut hi,
-            weld,
-        };
-        let said = last_run::is_trivial(attributes, 1, &welded, &class, &source, &ids, memory);
         truly += usize::from(truly_trivial);
         trivial += usize::from(said);
         assert!(
@@ -186,4 +194,57 @@ fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
         truly > 300 && trivial == truly,
         "{trivial} called trivial, {truly} truly trivial"
     );
+}
+
+/// A grid of `width` by `strips` quads whose even strips are listed first, then the odd ones: with
+/// an odd `strips`, the second half of the triangles uses only vertices the first half used, as
+/// in FlightHelmet.cc1's primitives, so nearly every vertex has a corner late in the list.
+fn interleaved_strips(width: usize, strips: usize, rng: &mut TestRng) -> Case {
+    let vertex = |i: usize, j: usize| (j * (width + 1) + i) as u32;
+    let mut case = Case {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        texcoords: Vec::new(),
+        indices: Vec::new(),
+    };
+    for j in 0..=strips {
+        for i in 0..=width {
+            let lift = rng.below(1000) as f32 / 4096.0;
+            case.positions.push([i as f32, j as f32, lift]);
+            case.normals.push([0.0, 0.0, 1.0]);
+            case.texcoords.push([i as f32 / width as f32, j as f32 / strips as f32]);
+        }
+    }
+    for j in (0..strips).step_by(2).chain((1..strips).step_by(2)) {
+        for i in 0..width {
+            let [a, b, c, d] = [vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)];
+            case.indices.extend([a, b, c, a, c, d]);
+        }
+    }
+    case
+}
+
+#[test]
+fn the_probe_settles_meshes_whose_late_triangles_reuse_early_vertices() {
+    let mut rng = TestRng(0x5EED);
+    let mut trivial = 0;
+    for (width, strips) in [(100, 101), (60, 151), (211, 41), (80, 81)] {
+        let case = interleaved_strips(width, strips, &mut rng);
+        let mesh = case.mesh();
+        let attributes = Attributes {
+            mesh: &mesh,
+            flip_v: false,
+            corner_values: None,
+            index_zero: None,
+        };
+        let (said, truly_trivial, run) = last_run_outcome(&case, &attributes).unwrap();
+        assert!(
+            !said || truly_trivial,
+            "{width}x{strips}: called trivial, but the last run is {run:?}"
+        );
+        trivial += usize::from(said);
+    }
+    // Without the probe, every vertex used late is a candidate, past the replay's limit: none of
+    // them would be settled.
+    assert!(trivial >= 3, "{trivial} of 4 meshes settled by the probe");
 }
