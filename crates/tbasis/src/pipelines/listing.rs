@@ -196,17 +196,18 @@ impl Listing<'_> {
             (s1 * z2 - s2 * z1) * r,
         ];
 
-        // Without short-circuit: ten tests and no branch.
-        let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2]
-            .iter()
-            .fold(true, |all, x| all & x.is_finite());
-        let orientation = if det == 0.0 || !finite {
-            0
-        } else if det > 0.0 {
+        // A finite value times zero is a zero, an infinite or NaN one NaN: the sum of those
+        // products is a zero exactly when all ten are finite (ten multiplies, no branch).
+        let zeros = ((x1 * 0.0 + x2 * 0.0) + (y1 * 0.0 + y2 * 0.0))
+            + ((z1 * 0.0 + z2 * 0.0) + (s1 * 0.0 + s2 * 0.0))
+            + (t1 * 0.0 + t2 * 0.0);
+        let finite = zeros == 0.0;
+        let sign = if det > 0.0 {
             flag::POSITIVE_UV
         } else {
             flag::NEGATIVE_UV
         };
+        let orientation = sign * u8::from(finite & (det != 0.0));
         (sdir, tdir, orientation)
     }
 }
@@ -241,4 +242,76 @@ fn dot(a: Vec3, b: Vec3) -> f32 {
 #[inline(always)]
 fn cross(a: Vec3, b: Vec3) -> Vec3 {
     Vec3::new(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::test_rng::TestRng;
+
+    /// The orientation flag by its definition: zero when the UV determinant is zero or any of the
+    /// ten edge components is not finite, else the determinant's sign.
+    fn defined_orientation(v: [[f32; 3]; 3], w: [[f32; 2]; 3]) -> u8 {
+        let edges = (0..3).flat_map(|k| [v[1][k] - v[0][k], v[2][k] - v[0][k]]);
+        let uv = (0..2).flat_map(|k| [w[1][k] - w[0][k], w[2][k] - w[0][k]]);
+        let finite = edges.chain(uv).all(f32::is_finite);
+        let (s1, s2, t1, t2) = (
+            w[1][0] - w[0][0],
+            w[2][0] - w[0][0],
+            w[1][1] - w[0][1],
+            w[2][1] - w[0][1],
+        );
+        let det = s1 * t2 - s2 * t1;
+        match (finite && det != 0.0, det > 0.0) {
+            (false, _) => 0,
+            (true, true) => flag::POSITIVE_UV,
+            (true, false) => flag::NEGATIVE_UV,
+        }
+    }
+
+    #[test]
+    fn the_orientation_flag_follows_its_definition_on_hostile_values() {
+        let palette = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5,
+            3e38,
+            -3e38,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            1e-45,
+        ];
+        let mut rng = TestRng(0x0B1E);
+        let mut seen = [0usize; 3];
+        for _ in 0..20_000 {
+            let mut pick = || {
+                if rng.chance(70) {
+                    rng.unit() * 4.0 - 2.0
+                } else {
+                    palette[rng.below(palette.len())]
+                }
+            };
+            let v: [[f32; 3]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
+            let w: [[f32; 2]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
+            let normals = [[0.0, 0.0, 1.0]; 3];
+            let mesh = Mesh::new(&v[..], &normals[..]).with_texcoords(&w[..]);
+            let listing = Listing {
+                mesh: &mesh,
+                texcoords: mesh.texcoords.unwrap(),
+                v_sign: 1.0,
+                triangle_count: 1,
+            };
+            let (_, _, orientation) = listing.solve(0, 1, 2);
+            assert_eq!(
+                orientation,
+                defined_orientation(v, w),
+                "positions {v:?}, texture coordinates {w:?}"
+            );
+            seen[usize::from(orientation / 2)] += 1;
+        }
+        // Every outcome occurs, each many times.
+        assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
+    }
 }
