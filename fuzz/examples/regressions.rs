@@ -41,6 +41,9 @@ mod fault;
 mod ffi;
 #[path = "../fuzz_targets/generate/frames.rs"]
 mod frames;
+#[rustfmt::skip]
+#[path = "../../src/guard.rs"]
+mod guard;
 #[path = "../fuzz_targets/generate/input.rs"]
 mod input;
 #[path = "../../c_tests/listing.rs"]

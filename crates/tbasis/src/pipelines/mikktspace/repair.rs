@@ -75,8 +75,9 @@ fn nearest_valid(tangent: Vec3, normal: Normal) -> Option<Vec3> {
 /// Makes every corner tangent valid with the smallest change, the sign kept: a tangent
 /// [`is_kept`] stays as it is; one with a direction off the normal's plane is moved into it and
 /// normalized; one without (zero, not finite, along the normal) takes, under INHERIT, the tangent
-/// of the first corner of the same vertex that has one, else (and under SKIP and REJECT) the
-/// fallback tangent built from the normal. `report.repaired_corners` counts the corners changed.
+/// of the first corner of the same vertex that has one, moved into the plane (a kept tangent may
+/// lie off it by the normal's own error), else (and under SKIP and REJECT) the fallback tangent
+/// built from the normal. `report.repaired_corners` counts the corners changed.
 /// `first_usable` holds a word per vertex.
 pub(crate) fn repair(
     mesh: &Mesh,
@@ -114,9 +115,64 @@ pub(crate) fn repair(
         if is_kept(tangents[c], normal) {
             continue;
         }
+        let fallback = || normal.unit.map_or(NO_NORMAL_TANGENT, fallback_tangent).to_array();
         tangents[c] = match first_usable[v] {
-            donor if donor != NONE && policy == DegeneratePolicy::Inherit => tangents[donor as usize],
-            _ => normal.unit.map_or(NO_NORMAL_TANGENT, fallback_tangent).to_array(),
+            donor if donor != NONE && policy == DegeneratePolicy::Inherit => {
+                nearest_valid(tangents[donor as usize], normal).unwrap_or_else(fallback)
+            }
+            _ => fallback(),
         };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_inherited_tangent_lies_in_the_unit_normals_plane() {
+        // A normal 1.0005 long: mikktspace.c's tangent at its vertex is kept 6e-4 off the unit
+        // normal's plane (the normal's own error), and the corner without a tangent inherits it.
+        let normal = [-0.03125, 0.0, 1.0];
+        let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let normals = [normal; 3];
+        let indices = [0u32, 1, 2, 0, 2, 1];
+        let mesh = Mesh::new(&positions[..], &normals[..]).with_indices(&indices[..]);
+        let n = GlamVec3::from_array(normal).normalize();
+        let in_plane = (GlamVec3::X - n * n.x).normalize();
+        let kept = (in_plane + 6e-4 * n).normalize();
+        let mut tangents = [
+            kept.to_array(),
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0; 3],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+        ];
+        tangents[1] = (GlamVec3::Y - n * n.y).normalize().to_array();
+        tangents[2] = tangents[1];
+        tangents[4] = tangents[1];
+        tangents[5] = tangents[1];
+        let mut report = Report::default();
+        repair(
+            &mesh,
+            DegeneratePolicy::Inherit,
+            &mut tangents,
+            &mut [0; 3],
+            &mut report,
+        );
+        assert_eq!(tangents[0], kept.to_array(), "mikktspace.c's tangent is kept");
+        let inherited = GlamVec3::from_array(tangents[3]);
+        assert!(
+            inherited.dot(n).abs() <= 1e-6,
+            "{inherited} is off the plane by {}",
+            inherited.dot(n)
+        );
+        assert!((inherited.length() - 1.0).abs() <= 1e-6);
+        assert!(
+            inherited.dot(in_plane) > 0.9999,
+            "{inherited} is not the inherited direction"
+        );
+        assert_eq!(report.repaired_corners, 1);
     }
 }
