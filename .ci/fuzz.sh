@@ -86,6 +86,12 @@ replay_regressions() {
         echo "fuzz: generate does not build" >&2
         exit 1
     }
+    # The writer of the inputs shares the target's modules: it must keep building with them.
+    cargo "+$toolchain" check --quiet --example regressions >"$log" 2>&1 || {
+        cat "$log"
+        echo "fuzz: the regressions writer (examples/regressions.rs) does not build" >&2
+        exit 1
+    }
     local binary="target/x86_64-unknown-linux-gnu/release/generate" failed=0 count=0 input name
     shopt -s nullglob
     for input in regressions/*; do
