@@ -196,18 +196,17 @@ impl Listing<'_> {
             (s1 * z2 - s2 * z1) * r,
         ];
 
-        // A finite value times zero is a zero, an infinite or NaN one NaN: the sum of those
-        // products is a zero exactly when all ten are finite (ten multiplies, no branch).
-        let zeros = ((x1 * 0.0 + x2 * 0.0) + (y1 * 0.0 + y2 * 0.0))
-            + ((z1 * 0.0 + z2 * 0.0) + (s1 * 0.0 + s2 * 0.0))
-            + (t1 * 0.0 + t2 * 0.0);
-        let finite = zeros == 0.0;
-        let sign = if det > 0.0 {
+        // Without short-circuit: ten tests and no branch.
+        let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2]
+            .iter()
+            .fold(true, |all, x| all & x.is_finite());
+        let orientation = if det == 0.0 || !finite {
+            0
+        } else if det > 0.0 {
             flag::POSITIVE_UV
         } else {
             flag::NEGATIVE_UV
         };
-        let orientation = sign * u8::from(finite & (det != 0.0));
         (sdir, tdir, orientation)
     }
 }
