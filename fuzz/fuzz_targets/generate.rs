@@ -73,7 +73,9 @@
 //! every vertex its first corner's frame; the report's split, mirrored and unreferenced vertices
 //! those of the corners. The same runs on two meshes made from the decoded one: every value
 //! snapped to one of a few (equal corners, shared edges, collapsed triangles and exact mirror
-//! seams become common), and its corners unindexed. The library starts a worker per 16384
+//! seams become common), and its corners unindexed. Built with `--cfg fuzzing`, the library takes
+//! its rarer routes to mikktspace.c's edge pairing on these small meshes too (the last-run probe
+//! and its narrowed replay, `pipelines/mikktspace/last_run.rs`). The library starts a worker per 16384
 //! triangles at most, for every method, beyond the fuzzer's meshes (8192 triangles, 4096
 //! vertices): the thread counts only check that asking for a second thread
 //! changes nothing.
