@@ -9,9 +9,9 @@
 //! them (`lo`, `hi`). The largest smaller index `i0*` is at least `L`, the largest smaller `lo`
 //! over the edges, and both ends of an edge of that run have an index of at least `i0*`, so a `hi`
 //! of at least `L`: only those vertices' indices are needed, and the splitting is replayed on just
-//! the grid cells that hold them. When those are many, a probe first replays the cells of the last
-//! good triangles' vertices: the smaller index of any edge is at most `i0*` too, so the largest one
-//! among their edges raises the bound, and with it the `hi` a vertex needs.
+//! the grid cells that hold them. When those are too many, a probe then replays the cells of the
+//! last good triangles' vertices: the smaller index of any edge is at most `i0*` too, so the
+//! largest one among their edges raises the bound, and with it the `hi` a vertex needs.
 #![forbid(unsafe_code)]
 
 use super::attributes::Attributes;
@@ -26,7 +26,8 @@ use super::NONE;
 const REPLAY_SHARE: usize = 8;
 const REPLAY_FLOOR: usize = if cfg!(fuzzing) { 24 } else { 4096 };
 
-/// How many of the last good triangles the probe replays: their edges have the largest `hi`.
+/// How many of the last good triangles the probe replays: each of their vertices has a corner near
+/// the end of the list, so their edges' smaller indices tend to be the largest.
 const PROBE_TRIANGLES: usize = if cfg!(fuzzing) { 2 } else { 64 };
 
 /// In `lo`, once it has given `L`: a vertex of the probe whose index is not known yet.
@@ -83,10 +84,11 @@ pub(crate) fn is_trivial(
             return trivial;
         }
     }
-    let Some(lowest) = search.probe(lowest, lo, &mut scratch) else {
+    let Some(raised) = search.probe(lowest, lo, &mut scratch) else {
         return false;
     };
-    !search.too_many(lowest) && search.settle(lowest, lo, &mut scratch) == Some(true)
+    // Unraised, the candidates are those that were too many already.
+    raised > lowest && !search.too_many(raised) && search.settle(raised, lo, &mut scratch) == Some(true)
 }
 
 /// The edges of the good triangles, as pairs of welded vertices.

@@ -76,9 +76,9 @@ fn nearest_valid(tangent: Vec3, normal: Normal) -> Option<Vec3> {
 /// [`is_kept`] stays as it is; one with a direction off the normal's plane is moved into it and
 /// normalized; one without (zero, not finite, along the normal) takes, under INHERIT, the tangent
 /// of the first corner of the same vertex that has one, moved into the plane (a kept tangent may
-/// lie off it by the normal's own error), else (and under SKIP and REJECT) the fallback tangent
-/// built from the normal. `report.repaired_corners` counts the corners changed.
-/// `first_usable` holds a word per vertex.
+/// lie off it by [`KEPT_OFF_PLANE`] plus the normal's own error), else (and under SKIP and REJECT)
+/// the fallback tangent built from the normal. `report.repaired_corners` counts the corners
+/// changed. `first_usable` holds a word per vertex.
 pub(crate) fn repair(
     mesh: &Mesh,
     policy: DegeneratePolicy,

@@ -241,7 +241,6 @@ fn the_probe_settles_meshes_whose_late_triangles_reuse_early_vertices() {
         );
         trivial += usize::from(said);
     }
-    // Without the probe, every vertex used late is a candidate, past the replay's limit: none of
-    // them would be settled.
+    // Every vertex used late has a `hi` above `L`: without the probe, past the replay's limit.
     assert!(trivial >= 3, "{trivial} of 4 meshes settled by the probe");
 }
