@@ -239,8 +239,8 @@ fn the_random_meshes_are_split_across_workers() {
 }
 
 /// On random meshes with mirror folds, collapsed and quantised UVs, zero and NaN normals, long
-/// triangles (above), indexed and not: every method and policy, per vertex and
-/// per corner.
+/// triangles (above), indexed and not, and with the triangles shuffled, on one thread and two
+/// (whose workers follow the pinned path): every method and policy, per vertex and per corner.
 #[test]
 fn every_supported_simd_path_gives_the_same_bits() {
     let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
@@ -257,8 +257,18 @@ fn every_supported_simd_path_gives_the_same_bits() {
         DegeneratePolicy::Inherit,
         DegeneratePolicy::Legacy,
     ];
-    for (vertex_count, seed, indexed) in [(3000, 11, true), (5000, 12, true), (1000, 13, false)] {
-        let mesh = RandomMesh::new(vertex_count, seed, indexed);
+    let cases = [
+        (3000, 11, true, 1),
+        (5000, 12, true, 1),
+        (1000, 13, false, 1),
+        (3000, 14, true, 2),
+    ];
+    for (vertex_count, seed, indexed, threads) in cases {
+        // Shuffled, two threads measure ranges of triangles apart and add them in order.
+        let mesh = match threads {
+            1 => RandomMesh::new(vertex_count, seed, indexed),
+            _ => RandomMesh::new(vertex_count, seed, indexed).shuffled(seed),
+        };
         let valid = |&(method, policy): &(Method, DegeneratePolicy)| {
             policy != DegeneratePolicy::Legacy || method.has_legacy_form()
         };
@@ -266,7 +276,7 @@ fn every_supported_simd_path_gives_the_same_bits() {
             let options = Options::default()
                 .with_method(method)
                 .with_policy(policy)
-                .with_threads(1);
+                .with_threads(threads);
             let along = |path: Path| {
                 simd::tests::PINNED.with(|p| p.set(Some(path)));
                 let outcome = run(&mesh, &options);

@@ -89,12 +89,13 @@ pub fn vertex_arrays<'a>(
     let sums: &mut [VertexSums] = arena.take(vertex_count)?;
     let links = arena.take(in_arena)?;
     let flags: &mut [u8] = arena.take(vertex_count)?;
+    // Written even where the heap gave zeros: the sums are read before they are written, and a
+    // fresh page read first is mapped to the shared zero page, so the write after it faults again
+    // and, with a second thread running, makes every core flush its TLB.
+    sums.fill(VertexSums::default());
+    flags.fill(0);
     let links = match place {
-        Place::Caller => {
-            sums.fill(VertexSums::default());
-            flags.fill(0);
-            Links::Caller(links)
-        }
+        Place::Caller => Links::Caller(links),
         Place::Heap => Links::reserve(heap_links, link_bytes)?,
     };
     Ok(Scratch {

@@ -144,12 +144,19 @@ fn run_spawning<P: Send, R: Send>(
         part.expect("each part runs once")
     };
     let (job, take) = (&job, &take);
+    // A test that pins a vector path pins it on the workers too.
+    #[cfg(test)]
+    let pinned = crate::kernel::simd::tests::PINNED.with(core::cell::Cell::get);
     std::thread::scope(|scope| {
         let mut handles: [Option<ScopedJoinHandle<'_, R>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
         for (slot, handle) in slots.iter().zip(&mut handles) {
             if may_spawn() {
                 *handle = std::thread::Builder::new()
-                    .spawn_scoped(scope, move || run_part(job, take(slot)))
+                    .spawn_scoped(scope, move || {
+                        #[cfg(test)]
+                        crate::kernel::simd::tests::PINNED.with(|path| path.set(pinned));
+                        run_part(job, take(slot))
+                    })
                     .ok();
             }
         }

@@ -621,36 +621,12 @@ pub fn accumulate_in_chunks(
                 }
                 lists.iter_mut().for_each(Vec::clear);
                 let at = |w: usize| chunk.start + chunk.len() * w / workers;
-                simd::run(|| {
-                    let (mut found, mut out_of_memory) = (Report::default(), false);
-                    let everything = |_: &[usize; 3]| true;
-                    measure(
-                        mesh,
-                        texcoords,
-                        options,
-                        at(d)..at(d + 1),
-                        everything,
-                        |t, k, v, term| {
-                            if k == 0 && term.side == NONE {
-                                found.note_degenerate(t);
-                            }
-                            let term = CornerTerm {
-                                vertex: v as u32,
-                                ..term
-                            };
-                            let list = &mut lists[ends.partition_point(|&end| end <= v)];
-                            if list.len() == list.capacity() && list.try_reserve(room.max(1)).is_err() {
-                                out_of_memory = true;
-                                return;
-                            }
-                            list.push(term);
-                        },
-                    )?;
-                    if out_of_memory {
-                        return Err(Error::OutOfMemory);
-                    }
-                    Ok(found)
-                })
+                // Forced inline, here and in `measure_into_lists`: a closure the compiler leaves
+                // out of line is compiled for the baseline only.
+                simd::run(
+                    #[inline(always)]
+                    || measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), ends, lists, room),
+                )
             },
             parallel::merge_results,
         );
@@ -658,6 +634,49 @@ pub fn accumulate_in_chunks(
         core::mem::swap(&mut filled, &mut spare);
     }
     Ok(report)
+}
+
+/// Measures `triangles` ([`measure`]) into `lists`, one per part of the vertex ranges ending at
+/// `ends`, each term into its vertex's part's list; a full list grows by `room` terms.
+#[inline(always)]
+fn measure_into_lists(
+    mesh: &Mesh,
+    texcoords: Strided<[f32; 2]>,
+    options: &Options,
+    triangles: Range<usize>,
+    ends: &[usize],
+    lists: &mut [Vec<CornerTerm>],
+    room: usize,
+) -> Result<Report, Error> {
+    let (mut found, mut out_of_memory) = (Report::default(), false);
+    let everything = |_: &[usize; 3]| true;
+    measure(
+        mesh,
+        texcoords,
+        options,
+        triangles,
+        everything,
+        #[inline(always)]
+        |t, k, v: usize, term: CornerTerm| {
+            if k == 0 && term.side == NONE {
+                found.note_degenerate(t);
+            }
+            let term = CornerTerm {
+                vertex: v as u32,
+                ..term
+            };
+            let list = &mut lists[ends.partition_point(|&end| end <= v)];
+            if list.len() == list.capacity() && list.try_reserve(room.max(1)).is_err() {
+                out_of_memory = true;
+                return;
+            }
+            list.push(term);
+        },
+    )?;
+    if out_of_memory {
+        return Err(Error::OutOfMemory);
+    }
+    Ok(found)
 }
 
 /// Calls `visit(t, k, v, right_handed)` for corner `k` (vertex `v`) of each non-degenerate
