@@ -293,3 +293,33 @@ fn every_supported_simd_path_gives_the_same_bits() {
         }
     }
 }
+
+/// A shuffled mesh with an index out of range in a late triangle: the workers that measure ranges
+/// of triangles apart stop together, every thread count reports the same first bad triangle, and
+/// the output stays as it was.
+#[test]
+fn an_index_out_of_range_stops_every_worker() {
+    let mut mesh = RandomMesh::new(3000, 15, true).shuffled(15);
+    let indices = mesh.indices.as_mut().expect("indexed");
+    let bad = indices.len() - 7;
+    indices[bad] = 3000;
+    assert_eq!(
+        crate::kernel::parallel::worker_count(2, &mesh.mesh()),
+        1,
+        "triangles measured apart"
+    );
+    for method in [Method::Angle, Method::Lengyel, Method::Area] {
+        for threads in [1, 2, 8] {
+            let options = Options::default().with_method(method).with_threads(threads);
+            let outcome = run(&mesh, &options);
+            let error = Error::IndexOutOfRange {
+                triangle: bad / 3,
+                index: 3000,
+                vertex_count: 3000,
+            };
+            assert_eq!(outcome.result, Err(error.clone()), "{method:?}, threads={threads}");
+            assert_eq!(outcome.corner_result, Err(error), "{method:?}, threads={threads}");
+            assert!(outcome.vertex_bits.iter().chain(&outcome.corner_bits).all(|&b| b == 0));
+        }
+    }
+}

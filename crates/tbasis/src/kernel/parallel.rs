@@ -9,7 +9,7 @@
 //! (the standard library's thread start excepted: [`run`]).
 #![forbid(unsafe_code)]
 
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Barrier, Condvar, Mutex, PoisonError};
 use std::thread::ScopedJoinHandle;
 
 use crate::kernel::error::Error;
@@ -168,6 +168,102 @@ fn run_spawning<P: Send, R: Send>(
             });
         }
     });
+}
+
+/// [`run_folded`] for jobs that wait for one another (at a [`Lockstep`]): every part starts at
+/// once, each on its own thread (the first on the calling one), or none does. `None`, with no
+/// job run, when a thread cannot be started: the caller then does the work another way.
+pub fn run_together<P: Send, R: Send>(
+    parts: impl IntoIterator<Item = P>,
+    job: impl Fn(P) -> R + Sync,
+    merge: impl FnMut(R, R) -> R,
+) -> Option<R> {
+    run_together_spawning(parts, job, merge, || true)
+}
+
+/// [`run_together`], asking `may_spawn` before each thread so a test can make spawning fail.
+fn run_together_spawning<P: Send, R: Send>(
+    parts: impl IntoIterator<Item = P>,
+    job: impl Fn(P) -> R + Sync,
+    mut merge: impl FnMut(R, R) -> R,
+    may_spawn: impl Fn() -> bool,
+) -> Option<R> {
+    let mut parts = parts.into_iter();
+    let first = parts.next()?;
+    // Whether every thread started, once the calling thread knows; the started ones wait for it.
+    let gate = (Mutex::new(None::<bool>), Condvar::new());
+    let wait_for_start = || {
+        let (started, signal) = &gate;
+        let mut started = started.lock().unwrap_or_else(PoisonError::into_inner);
+        loop {
+            match *started {
+                Some(all) => return all,
+                None => started = signal.wait(started).unwrap_or_else(PoisonError::into_inner),
+            }
+        }
+    };
+    let (job, wait_for_start) = (&job, &wait_for_start);
+    #[cfg(test)]
+    let pinned = crate::kernel::simd::tests::PINNED.with(core::cell::Cell::get);
+    std::thread::scope(|scope| {
+        let mut handles: [Option<ScopedJoinHandle<'_, Option<R>>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
+        let mut all_started = true;
+        for (part, handle) in parts.by_ref().zip(&mut handles) {
+            let started = may_spawn().then(|| {
+                std::thread::Builder::new().spawn_scoped(scope, move || {
+                    #[cfg(test)]
+                    crate::kernel::simd::tests::PINNED.with(|path| path.set(pinned));
+                    wait_for_start().then(|| run_part(job, part))
+                })
+            });
+            *handle = started.and_then(Result::ok);
+            all_started &= handle.is_some();
+        }
+        assert!(parts.next().is_none(), "more than MAX_RANGES parts");
+        let (started, signal) = &gate;
+        *started.lock().unwrap_or_else(PoisonError::into_inner) = Some(all_started);
+        signal.notify_all();
+        let mut total = all_started.then(|| run_part(job, first));
+        for handle in handles.iter_mut().filter_map(Option::take) {
+            let result = handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            total = total.zip(result).map(|(before, result)| merge(before, result));
+        }
+        total
+    })
+}
+
+/// The rounds of a job run by [`run_together`]: every job waits for the others at the end of
+/// each round. A job that ends early, by an error or a panic, still waits out its remaining
+/// rounds when this is dropped, so that the others never wait for it in vain.
+pub struct Lockstep<'b> {
+    barrier: &'b Barrier,
+    rounds_left: usize,
+}
+
+impl<'b> Lockstep<'b> {
+    /// `rounds` rounds at `barrier`, which counts every job.
+    pub fn new(barrier: &'b Barrier, rounds: usize) -> Self {
+        Lockstep {
+            barrier,
+            rounds_left: rounds,
+        }
+    }
+
+    /// Ends this job's round once every job has ended it.
+    pub fn end_round(&mut self) {
+        if self.rounds_left > 0 {
+            self.rounds_left -= 1;
+            self.barrier.wait();
+        }
+    }
+}
+
+impl Drop for Lockstep<'_> {
+    fn drop(&mut self) {
+        while self.rounds_left > 0 {
+            self.end_round();
+        }
+    }
 }
 
 /// One part's work: a function of its own, so that the job's code is compiled once, not at each
@@ -373,6 +469,67 @@ mod tests {
         });
         let expected: Vec<_> = (0..6).map(|p| (p * 10, p == 0 || p % 2 == 1)).collect();
         assert_eq!(alternate, expected);
+    }
+
+    /// The parts of [`run_together`] meet at a barrier in every round: they run at once.
+    #[test]
+    fn parts_run_together_and_merge_in_order() {
+        for parts in [1, 2, 4] {
+            let barrier = Barrier::new(parts);
+            let job = |part: usize| {
+                let mut lockstep = Lockstep::new(&barrier, 3);
+                for _ in 0..3 {
+                    lockstep.end_round();
+                }
+                part
+            };
+            let merged = run_together(0..parts, job, |a, b| 10 * a + b);
+            let expected = (0..parts).fold(0, |a, b| 10 * a + b);
+            assert_eq!(merged, Some(expected), "{parts} parts");
+        }
+    }
+
+    #[test]
+    fn no_part_runs_unless_every_thread_starts() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let (ran, attempt) = (AtomicUsize::new(0), AtomicUsize::new(0));
+        // The second of three spawns fails.
+        let second_fails = || attempt.fetch_add(1, Ordering::Relaxed) != 1;
+        let job = |_: usize| ran.fetch_add(1, Ordering::Relaxed);
+        assert_eq!(run_together_spawning(0..4, job, |a, _| a, second_fails), None);
+        assert_eq!(ran.load(Ordering::Relaxed), 0);
+        assert_eq!(attempt.load(Ordering::Relaxed), 3, "every spawn is tried");
+    }
+
+    /// A part that leaves its rounds early, by returning or by a panic, still lets the others
+    /// finish theirs, and its panic reaches the caller once they have.
+    #[test]
+    fn a_part_that_ends_early_waits_out_its_rounds() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        for panics in [false, true] {
+            let (barrier, rounds_ended) = (Barrier::new(3), AtomicUsize::new(0));
+            let job = |part: usize| {
+                let mut lockstep = Lockstep::new(&barrier, 4);
+                for round in 0..4 {
+                    if part == 1 && round == 1 {
+                        assert!(!panics, "part 1 panicked");
+                        return Err(part);
+                    }
+                    lockstep.end_round();
+                    rounds_ended.fetch_add(1, Ordering::SeqCst);
+                }
+                Ok(part)
+            };
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                run_together(0..3, job, |a, b| a.and(b))
+            }));
+            assert_eq!(outcome.is_err(), panics);
+            if !panics {
+                assert_eq!(outcome.unwrap(), Some(Err(1)));
+            }
+            // Parts 0 and 2 end all four rounds; part 1 its first only.
+            assert_eq!(rounds_ended.load(Ordering::SeqCst), 9, "panics: {panics}");
+        }
     }
 
     /// A panic in any part, the caller's or a worker's, reaches the caller only after every other

@@ -2,7 +2,9 @@
 //! by handedness.
 #![forbid(unsafe_code)]
 
-use core::ops::Range;
+use core::ops::{DerefMut, Range};
+use core::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Barrier, Mutex, MutexGuard, PoisonError};
 
 use glam::{Vec2, Vec3};
 
@@ -11,6 +13,7 @@ use crate::kernel::degenerate::Shape;
 use crate::kernel::error::Error;
 use crate::kernel::frame::{is_well_scaled, length_and_direction, length_and_direction_fast};
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
+use crate::kernel::memory::vec_with_capacity;
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::{Method, Options};
 use crate::kernel::report::Report;
@@ -557,21 +560,25 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
     Ok(report)
 }
 
-/// Triangles per chunk of [`accumulate_in_chunks`], one worker's least share (`kernel/parallel.rs`):
-/// the workers start once per chunk, and a chunk's corner terms (1.2 MB) stay in the cache until
-/// they are added. Unit tests cut small meshes into several chunks too.
-const CHUNK_TRIANGLES: usize = parallel::MIN_TRIANGLES_PER_WORKER;
+/// Triangles per chunk of [`accumulate_in_chunks`]: the workers wait for one another once per
+/// chunk, and a chunk's corner terms (0.6 MB) stay in the cache until they are added (on the
+/// benchmark asset, two workers took longest with 1024 and with 16384 of the sizes from 1024 to
+/// 65536, least with 8192). Unit tests cut small meshes into several chunks too.
+const CHUNK_TRIANGLES: usize = if cfg!(test) { 8 } else { 8 * 1024 };
 
 /// `lists` lists of corner terms, each with room for `room` terms, or [`Error::OutOfMemory`].
-fn term_lists(lists: usize, room: usize) -> Result<Vec<Vec<CornerTerm>>, Error> {
+fn term_lists(lists: usize, room: usize) -> Result<Vec<Mutex<Vec<CornerTerm>>>, Error> {
     let mut all = Vec::new();
     all.try_reserve_exact(lists).map_err(|_| Error::OutOfMemory)?;
     for _ in 0..lists {
-        let mut list = Vec::new();
-        list.try_reserve_exact(room).map_err(|_| Error::OutOfMemory)?;
-        all.push(list);
+        all.push(Mutex::new(vec_with_capacity(room)?));
     }
     Ok(all)
+}
+
+/// A term list, whatever a panicking worker left in it (a panic is passed on after every worker).
+fn lock(list: &Mutex<Vec<CornerTerm>>) -> MutexGuard<'_, Vec<CornerTerm>> {
+    list.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// [`accumulate`] on several workers whatever the mesh's vertex order, with the same bits:
@@ -579,7 +586,9 @@ fn term_lists(lists: usize, room: usize) -> Result<Vec<Vec<CornerTerm>>, Error> 
 /// worker measures a consecutive range of each chunk of triangles, keeping each corner's term in
 /// a list for the part that holds its vertex; in the next round each part adds its lists, from
 /// the first range to the last, so that every vertex still adds its terms in triangle order.
-/// Round `r` adds chunk `r - 1` and measures chunk `r`.
+/// Round `r` adds chunk `r - 1` and measures chunk `r`; the workers run side by side from the
+/// first round to the last, and wait for one another between rounds. When their threads cannot
+/// all be started, one worker does everything.
 ///
 /// Memory: two sets (the lists being filled and those being added) of `workers * workers` lists,
 /// reserved fallibly before any round; with two workers each list has room for every corner of
@@ -598,42 +607,60 @@ pub fn accumulate_in_chunks(
     };
     let workers = ends.len();
     let triangle_count = mesh.indices.triangle_count(mesh.vertex_count())?;
-    let mut report = Report::default();
     // Room for a range's terms in each list, more than its share (a list grows only when one
     // part holds most of a range's vertices), and never more than every corner of the range.
     let most = 3 * CHUNK_TRIANGLES.div_ceil(workers);
     let room = (2 * 3 * CHUNK_TRIANGLES / (workers * workers)).min(most);
-    // List `w * workers + d` holds the terms worker `w` measured for part `d`.
-    let (mut filled, mut spare) = (
+    // Round `r` fills set `r % 2` and adds the other; in each, list `w * workers + d` holds the
+    // terms worker `w` measured for part `d`.
+    let sets = [
         term_lists(workers * workers, room)?,
         term_lists(workers * workers, room)?,
-    );
-    for round in 0..=triangle_count.div_ceil(CHUNK_TRIANGLES) {
-        let chunk = (round * CHUNK_TRIANGLES).min(triangle_count)..((round + 1) * CHUNK_TRIANGLES).min(triangle_count);
-        let previous = &filled;
-        let jobs = scratch.split(ends).zip(spare.chunks_mut(workers)).enumerate();
-        let round_report = parallel::run_folded(
-            jobs,
-            |(d, (part, lists))| {
-                for term in (0..workers).flat_map(|w| &previous[w * workers + d]) {
-                    let slot = term.vertex as usize - part.first;
-                    term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
+    ];
+    let rounds = triangle_count.div_ceil(CHUNK_TRIANGLES) + 1;
+    let (barrier, failed) = (Barrier::new(workers), AtomicBool::new(false));
+    let worker = |(d, part): (usize, Scratch)| -> Result<Report, Error> {
+        let mut lockstep = parallel::Lockstep::new(&barrier, rounds);
+        let mut own = vec_with_capacity(workers)?;
+        let mut report = Report::default();
+        for round in 0..rounds {
+            // After a failure the others only wait out the rounds.
+            if !failed.load(Ordering::Relaxed) {
+                let (filling, adding) = (&sets[round % 2], &sets[(round + 1) % 2]);
+                for w in 0..workers {
+                    for term in lock(&adding[w * workers + d]).iter() {
+                        let slot = term.vertex as usize - part.first;
+                        term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
+                    }
                 }
-                lists.iter_mut().for_each(Vec::clear);
+                own.extend(filling[d * workers..(d + 1) * workers].iter().map(lock));
+                own.iter_mut().for_each(|list| list.clear());
+                let chunk =
+                    (round * CHUNK_TRIANGLES).min(triangle_count)..((round + 1) * CHUNK_TRIANGLES).min(triangle_count);
                 let at = |w: usize| chunk.start + chunk.len() * w / workers;
                 // Forced inline, here and in `measure_into_lists`: a closure the compiler leaves
                 // out of line is compiled for the baseline only.
-                simd::run(
+                let measured = simd::run(
                     #[inline(always)]
-                    || measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), ends, lists, room),
-                )
-            },
-            parallel::merge_results,
-        );
-        report.merge(&round_report.expect("one job per part")?);
-        core::mem::swap(&mut filled, &mut spare);
+                    || measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), ends, &mut own, room),
+                );
+                own.clear();
+                match measured {
+                    Ok(found) => report.merge(&found),
+                    Err(error) => {
+                        failed.store(true, Ordering::Relaxed);
+                        return Err(error);
+                    }
+                }
+            }
+            lockstep.end_round();
+        }
+        Ok(report)
+    };
+    match parallel::run_together(scratch.split(ends).enumerate(), worker, parallel::merge_results) {
+        Some(outcome) => outcome,
+        None => accumulate(mesh, options, scratch),
     }
-    Ok(report)
 }
 
 /// Measures `triangles` ([`measure`]) into `lists`, one per part of the vertex ranges ending at
@@ -645,7 +672,7 @@ fn measure_into_lists(
     options: &Options,
     triangles: Range<usize>,
     ends: &[usize],
-    lists: &mut [Vec<CornerTerm>],
+    lists: &mut [impl DerefMut<Target = Vec<CornerTerm>>],
     room: usize,
 ) -> Result<Report, Error> {
     let (mut found, mut out_of_memory) = (Report::default(), false);
