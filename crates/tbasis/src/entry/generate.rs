@@ -3,7 +3,7 @@
 
 use crate::entry::validate;
 use crate::kernel::error::Error;
-use crate::kernel::memory::{with_memory, Place};
+use crate::kernel::memory::{with_memory, Fresh, Place};
 use crate::kernel::mesh::{Mesh, Output, Target};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
 use crate::kernel::report::Report;
@@ -145,9 +145,15 @@ fn run(
     report: &mut Report,
 ) -> Result<(), Error> {
     let pipeline = Pipeline::of(options);
+    // The per-vertex sums are added to from the start; MIKKTSPACE writes before it reads.
+    let fresh = match pipeline {
+        Pipeline::Mikktspace => Fresh::Untouched,
+        Pipeline::Listing | Pipeline::PerVertex => Fresh::Written,
+    };
     with_memory(
         scratch,
         pipeline.memory_for(mesh, options),
+        fresh,
         |memory, place| match pipeline {
             Pipeline::Listing => listing::generate(mesh, options, memory, place, target, report),
             Pipeline::PerVertex => per_vertex::generate(mesh, options, memory, place, target, report),

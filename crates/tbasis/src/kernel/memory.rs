@@ -76,8 +76,8 @@ pub(crate) fn vertex_arrays_bytes(vertex_count: usize, link_bytes: usize, place:
 
 /// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena` in
 /// memory from `place`: the sums, the adjacency (right after them, so 4-byte aligned), the flags;
-/// the sums and flags zero (heap memory comes zeroed). In heap memory the adjacency is only
-/// reserved, in `heap_links`.
+/// the sums and flags zero (heap memory comes zero, and written: [`Fresh::Written`]). In heap
+/// memory the adjacency is only reserved, in `heap_links`.
 pub fn vertex_arrays<'a>(
     arena: &mut Arena<'a>,
     vertex_count: usize,
@@ -89,13 +89,12 @@ pub fn vertex_arrays<'a>(
     let sums: &mut [VertexSums] = arena.take(vertex_count)?;
     let links = arena.take(in_arena)?;
     let flags: &mut [u8] = arena.take(vertex_count)?;
-    // Written even where the heap gave zeros: the sums are read before they are written, and a
-    // fresh page read first is mapped to the shared zero page, so the write after it faults again
-    // and, with a second thread running, makes every core flush its TLB.
-    sums.fill(VertexSums::default());
-    flags.fill(0);
     let links = match place {
-        Place::Caller => Links::Caller(links),
+        Place::Caller => {
+            sums.fill(VertexSums::default());
+            flags.fill(0);
+            Links::Caller(links)
+        }
         Place::Heap => Links::reserve(heap_links, link_bytes)?,
     };
     Ok(Scratch {
@@ -138,12 +137,25 @@ pub(crate) fn vec_filled<T: Clone>(n: usize, value: T) -> Result<Vec<T>, Error> 
     Ok(v)
 }
 
+/// How a call's fresh heap memory starts out: zero either way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Fresh {
+    /// Unwritten ([`zeroed_bytes`]): pages a call never touches are never faulted in. For
+    /// pipelines that write each array before they read it.
+    Untouched,
+    /// Written: for arrays read before they are written (sums added to). A fresh page read first
+    /// is mapped to the shared zero page, so the write after it faults again and, with a second
+    /// thread running, makes every core flush its TLB.
+    Written,
+}
+
 /// Runs `job` on the working memory of one call: the first `size(Place::Caller)` bytes of the
 /// caller's `scratch` ([`Error::ScratchTooSmall`] when it has fewer), or `size(Place::Heap)`
-/// fresh zeroed bytes; `None` from `size` is [`Error::SizeOverflow`].
+/// fresh zero bytes, as `fresh` says; `None` from `size` is [`Error::SizeOverflow`].
 pub(crate) fn with_memory<R>(
     scratch: Option<&mut [u8]>,
     size: impl Fn(Place) -> Option<usize>,
+    fresh: Fresh,
     job: impl FnOnce(&mut [u8], Place) -> Result<R, Error>,
 ) -> Result<R, Error> {
     match scratch {
@@ -153,7 +165,11 @@ pub(crate) fn with_memory<R>(
             job(memory, Place::Caller)
         }
         None => {
-            let mut memory = zeroed_bytes(size(Place::Heap).ok_or(Error::SizeOverflow)?)?;
+            let len = size(Place::Heap).ok_or(Error::SizeOverflow)?;
+            let mut memory = match fresh {
+                Fresh::Untouched => zeroed_bytes(len)?,
+                Fresh::Written => vec_filled(len, 0)?,
+            };
             job(&mut memory, Place::Heap)
         }
     }
