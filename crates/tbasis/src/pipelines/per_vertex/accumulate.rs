@@ -2,7 +2,7 @@
 //! by handedness.
 #![forbid(unsafe_code)]
 
-use core::ops::{DerefMut, Range};
+use core::ops::Range;
 use core::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Barrier, Mutex, MutexGuard, PoisonError};
 
@@ -621,7 +621,9 @@ pub fn accumulate_in_chunks(
     let (barrier, failed) = (Barrier::new(workers), AtomicBool::new(false));
     let worker = |(d, part): (usize, Scratch)| -> Result<Report, Error> {
         let mut lockstep = parallel::Lockstep::new(&barrier, rounds);
-        let mut own = vec_with_capacity(workers)?;
+        // The lists this worker fills in a round, taken out of their places meanwhile.
+        let mut own: [Vec<CornerTerm>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+        let own = &mut own[..workers];
         let mut report = Report::default();
         for round in 0..rounds {
             // After a failure the others only wait out the rounds.
@@ -633,8 +635,11 @@ pub fn accumulate_in_chunks(
                         term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
                     }
                 }
-                own.extend(filling[d * workers..(d + 1) * workers].iter().map(lock));
-                own.iter_mut().for_each(|list| list.clear());
+                let places = &filling[d * workers..(d + 1) * workers];
+                for (list, place) in own.iter_mut().zip(places) {
+                    *list = core::mem::take(&mut *lock(place));
+                    list.clear();
+                }
                 let chunk =
                     (round * CHUNK_TRIANGLES).min(triangle_count)..((round + 1) * CHUNK_TRIANGLES).min(triangle_count);
                 let at = |w: usize| chunk.start + chunk.len() * w / workers;
@@ -642,9 +647,11 @@ pub fn accumulate_in_chunks(
                 // out of line is compiled for the baseline only.
                 let measured = simd::run(
                     #[inline(always)]
-                    || measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), ends, &mut own, room),
+                    || measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), ends, own, room),
                 );
-                own.clear();
+                for (list, place) in own.iter_mut().zip(places) {
+                    *lock(place) = core::mem::take(list);
+                }
                 match measured {
                     Ok(found) => report.merge(&found),
                     Err(error) => {
@@ -672,7 +679,7 @@ fn measure_into_lists(
     options: &Options,
     triangles: Range<usize>,
     ends: &[usize],
-    lists: &mut [impl DerefMut<Target = Vec<CornerTerm>>],
+    lists: &mut [Vec<CornerTerm>],
     room: usize,
 ) -> Result<Report, Error> {
     let (mut found, mut out_of_memory) = (Report::default(), false);
