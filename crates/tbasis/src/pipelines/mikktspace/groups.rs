@@ -11,12 +11,12 @@
 use super::faces::{GROUP_WITH_ANY, ORIENT_PRESERVING};
 use super::NONE;
 
-/// The groups: group `i` is the triangles `faces[starts[i]..starts[i + 1]]` around welded vertex
-/// `vertex[i]`, with orientation `orientation[i]` (1: preserving).
+/// The groups: group `i` is the corners `corners[starts[i]..starts[i + 1]]` (corner `k` of good
+/// triangle `g` as `3 g + k`), at one welded vertex and one per triangle, with orientation
+/// `orientation[i]` (1: preserving).
 pub(crate) struct Groups<'a> {
     pub starts: &'a mut [u32],
-    pub faces: &'a mut [u32],
-    pub vertex: &'a mut [u32],
+    pub corners: &'a mut [u32],
     pub orientation: &'a mut [u8],
 }
 
@@ -42,11 +42,10 @@ pub(crate) fn build(
             let vertex = ids[f][i];
             let preserving = flags[f] & ORIENT_PRESERVING;
             groups.starts[count] = filled as u32;
-            groups.vertex[count] = vertex;
             groups.orientation[count] = preserving;
             count += 1;
             assigned[f][i] = group;
-            groups.faces[filled] = f as u32;
+            groups.corners[filled] = (3 * f + i) as u32;
             filled += 1;
 
             // AssignRecur on the left neighbour, then the right: pushed right first.
@@ -73,7 +72,7 @@ pub(crate) fn build(
                 if flags[t] & ORIENT_PRESERVING != preserving {
                     continue;
                 }
-                groups.faces[filled] = t as u32;
+                groups.corners[filled] = (3 * t + k) as u32;
                 filled += 1;
                 assigned[t][k] = group;
                 for neighbour in [neighbors[t][(k + 2) % 3], neighbors[t][k]] {

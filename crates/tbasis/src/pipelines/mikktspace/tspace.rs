@@ -22,8 +22,6 @@ pub(crate) fn threshold_cosine(degrees: f32) -> f32 {
 
 /// What the per-group pass reads.
 pub(crate) struct Inputs<'a> {
-    /// Welded vertices of each good triangle.
-    pub ids: &'a [[u32; 3]],
     /// Flags of each good triangle (after grouping).
     pub flags: &'a [u8],
     /// The triangle each good triangle is.
@@ -154,25 +152,22 @@ pub(crate) struct Written<'a, S> {
     pub spilled: &'a mut Vec<Spilled<S>>,
 }
 
-/// Writes the space and orientation of the corners of the group's triangles `faces` (in
-/// ascending order) around welded vertex `vertex`: those outside `out`'s range are spilled.
+/// Writes the space and orientation of the group's `corners` (`3 g + k` for corner `k` of good
+/// triangle `g`, one per triangle, in ascending order): those outside `out`'s range are spilled.
 /// Fails when memory for a spill or for the pairwise comparison cannot be had.
 pub(crate) fn evaluate_group<S: Space>(
     inputs: &Inputs,
-    faces: &[u32],
-    vertex: u32,
+    corners: &[u32],
     preserving: bool,
     out: &mut Written<S>,
 ) -> Result<(), Error> {
-    let corner = |j: usize| {
-        let f = faces[j] as usize;
-        3 * f + inputs.ids[f].iter().position(|&id| id == vertex).unwrap_or(0)
-    };
+    let corner = |j: usize| corners[j] as usize;
+    let good = |j: usize| corners[j] / 3;
     let (s, t) = (inputs.s, inputs.t);
-    let usable = |j: usize| inputs.flags[faces[j] as usize] & GROUP_WITH_ANY == 0;
+    let usable = |j: usize| inputs.flags[good(j) as usize] & GROUP_WITH_ANY == 0;
     let write = |j: usize, space: S, out: &mut Written<S>| -> Result<(), Error> {
-        let (triangle, k) = (inputs.order[faces[j] as usize] as usize, corner(j) % 3);
-        if out.goods.contains(&faces[j]) {
+        let (triangle, k) = (inputs.order[good(j) as usize] as usize, corner(j) % 3);
+        if out.goods.contains(&good(j)) {
             let corner = 3 * (triangle - out.first_triangle) + k;
             out.spaces[corner] = space;
             out.orientation[corner] = u8::from(preserving);
@@ -183,7 +178,7 @@ pub(crate) fn evaluate_group<S: Space>(
         }
         Ok(())
     };
-    let count = faces.len();
+    let count = corners.len();
 
     // The usual case in one pass: the whole group's sum, and whether its directions lie in one
     // half-space (then, at 180 degrees, it is every member's sub-group).
@@ -206,7 +201,7 @@ pub(crate) fn evaluate_group<S: Space>(
     // triangles of one face, or one without a usable derivative, always share a sub-group.
     let within = |terms: &[Vec3], j: usize, k: usize| dot(terms[corner(j)], terms[corner(k)]) > inputs.threshold;
     let face = |j: usize| {
-        let triangle = inputs.order[faces[j] as usize];
+        let triangle = inputs.order[good(j) as usize];
         inputs.face_of.map_or(triangle, |face_of| face_of[triangle as usize])
     };
     let member =
