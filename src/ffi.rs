@@ -640,10 +640,10 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 ///   vertex a list start and a queue slot, per corner its triangle, 4 bytes each (8 each, so
 ///   `45*V + 8*C + 3`, when `V` or `C` exceeds `UINT32_MAX`);
 /// - `TBASIS_METHOD_MIKKTSPACE`, with `T = C / 3` triangles:
-///   `57*C + 65*T + 4*V + 4*max(2*V + 2, C) + max(40*C + 8*V + 16415, 135*T + 30) + 39` (about
-///   128 bytes per corner; the second `max` is the largest phase's memory: the weld's, or in most
-///   indexed meshes, from about `(8*V + 16385) / 5` corners, grouping's), 0 when `V` is 0; with
-///   policy REJECT at least `29*V + 3`, in which the degenerate test runs first.
+///   `97*C + 65*T + 12*V + 4*max(2*V + 2, C) + 16454` (about 125 bytes per corner, of which
+///   `40*C + 8*V + 16415` for the replay of mikktspace.c's weld, reused by the later phases), 0
+///   when `V` is 0; with policy REJECT at least `29*V + 3`, in which the degenerate test runs
+///   first.
 ///
 /// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
 /// `options` may be NULL (the defaults).

@@ -20,8 +20,16 @@ pub(crate) struct Groups<'a> {
     pub orientation: &'a mut [u8],
 }
 
+/// Words of search stack for `triangles` good triangles: a group takes at most one corner of each
+/// (a good triangle's corners are three welded vertices), and only a corner taken pushes, its two
+/// neighbours.
+pub(crate) fn stack_words(triangles: usize) -> usize {
+    2 * triangles + 2
+}
+
 /// Builds the groups and writes `assigned[g][k]`, the group of corner `k` of good triangle `g`
-/// ([`NONE`] when it has none). `stack` needs `6 * ids.len() + 2` words. Returns the group count.
+/// ([`NONE`] when it has none). `stack` needs [`stack_words`] of `ids.len()`. Returns the group
+/// count.
 pub(crate) fn build(
     ids: &[[u32; 3]],
     neighbors: &[[u32; 3]],
@@ -86,4 +94,39 @@ pub(crate) fn build(
     }
     groups.starts[count] = filled as u32;
     count
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A closed fan of `n` triangles around welded vertex 0, all of one orientation: one group of
+    /// every triangle at the centre, found with no more stack than [`stack_words`].
+    #[test]
+    fn a_whole_fan_is_one_group_within_the_stack() {
+        for n in [3usize, 4, 64, 1001] {
+            let ring = |t: usize| 1 + (t % n) as u32;
+            let ids: Vec<[u32; 3]> = (0..n).map(|t| [0, ring(t), ring(t + 1)]).collect();
+            // Across edge k (corner k to corner k + 1): the previous triangle, none, the next.
+            let neighbors: Vec<[u32; 3]> = (0..n)
+                .map(|t| [((t + n - 1) % n) as u32, NONE, ((t + 1) % n) as u32])
+                .collect();
+            let mut flags = vec![ORIENT_PRESERVING; n];
+            let mut assigned = vec![[NONE; 3]; n];
+            let (mut starts, mut corners, mut orientation) = (vec![0; 3 * n + 1], vec![0; 3 * n], vec![0; 3 * n]);
+            let mut groups = Groups {
+                starts: &mut starts,
+                corners: &mut corners,
+                orientation: &mut orientation,
+            };
+            let mut stack = vec![0; stack_words(n)];
+            let count = build(&ids, &neighbors, &mut flags, &mut assigned, &mut groups, &mut stack);
+            // The centre's group, then each ring vertex's two corners, in one group each.
+            assert_eq!(count, 1 + n, "{n} triangles");
+            let mut centre: Vec<u32> = corners[..n].to_vec();
+            centre.sort_unstable();
+            assert_eq!(centre, (0..n as u32).map(|t| 3 * t).collect::<Vec<_>>());
+            assert!(assigned.iter().all(|corners| corners[0] == 0));
+        }
+    }
 }

@@ -150,12 +150,13 @@ fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScr
         starts: arena.take(3 * triangles + 1)?,
         orientation: arena.take(3 * triangles)?,
     };
-    Ok((terms, groups, arena.take(6 * triangles + 2)?))
+    Ok((terms, groups, arena.take(groups::stack_words(triangles))?))
 }
 
 /// Bytes of working memory a call needs; `None` on overflow. The layout's sum, which the header
-/// states as `57 C + 65 T + 4 V + 4 max(2 V + 2, C) + max(40 C + 8 V + 16415, 135 T + 30) + 39`
-/// (checked by a test).
+/// states as `97 C + 65 T + 12 V + 4 max(2 V + 2, C) + 16454` (checked by a test): the weld's
+/// phase, `40 C + 8 V + 16415`, is the largest: edge pairing's and grouping's (`119 T + 30`) fit
+/// in it.
 pub(crate) fn scratch_bytes(vertex_count: usize, corner_count: usize) -> Option<usize> {
     if vertex_count == 0 {
         // Every index is out of range, or there are none: nothing to work on.
@@ -689,9 +690,8 @@ mod tests {
 
     #[test]
     fn scratch_bytes_follow_the_documented_formula() {
-        // The largest phase's memory is the weld's up to about `(8 V + 16385) / 5` corners, then
-        // grouping's (as for 1000 vertices and about 6000 corners, and 2 and 3282); a count that
-        // is not a multiple of 3 leaves its partial triangle out of `T`.
+        // The largest phase is the weld's, whatever the counts; a count that is not a multiple of
+        // 3 leaves its partial triangle out of `T`.
         for (v, c) in [
             (1, 3),
             (3, 3),
@@ -706,8 +706,12 @@ mod tests {
             (1000, 5995),
         ] {
             let t = c / 3;
-            let phase = (40 * c + 8 * v + 16415).max(135 * t + 30);
-            let formula = 57 * c + 65 * t + 4 * v + 4 * (2 * v + 2).max(c) + phase + 39;
+            let formula = 97 * c + 65 * t + 12 * v + 4 * (2 * v + 2).max(c) + 16454;
+            let grouping = bytes_of(|a| group_scratch(a, t).map(|_| ()));
+            assert_eq!(grouping, Ok(119 * t + 30), "{t} triangles");
+            let weld = bytes_of(|a| WeldScratch::take(a, v, c).map(|_| ()));
+            assert_eq!(weld, Ok(40 * c + 8 * v + 16415), "{v} vertices, {c} corners");
+            assert!(bytes_of(|a| edge_scratch(a, c).map(|_| ())).unwrap() <= 40 * c + 8 * v + 16415);
             assert_eq!(scratch_bytes(v, c), Some(formula), "{v} vertices, {c} corners");
         }
         assert_eq!(scratch_bytes(0, 0), Some(0));
