@@ -191,41 +191,34 @@ fn run_together_spawning<P: Send, R: Send>(
     mut merge: impl FnMut(R, R) -> R,
     may_spawn: impl Fn() -> bool,
 ) -> Option<R> {
-    let mut parts = parts.into_iter();
+    // Every part is taken before any thread starts: nothing after the first start may panic
+    // before the gate opens, or the started threads would wait for it forever.
+    let mut parts = parts.into_iter().fuse();
     let first = parts.next()?;
-    // Whether every thread started, once the calling thread knows; the started ones wait for it.
-    let gate = (Mutex::new(None::<bool>), Condvar::new());
-    let wait_for_start = || {
-        let (started, signal) = &gate;
-        let mut started = started.lock().unwrap_or_else(PoisonError::into_inner);
-        loop {
-            match *started {
-                Some(all) => return all,
-                None => started = signal.wait(started).unwrap_or_else(PoisonError::into_inner),
-            }
-        }
-    };
-    let (job, wait_for_start) = (&job, &wait_for_start);
+    let mut others: [Option<P>; MAX_RANGES - 1] = core::array::from_fn(|_| parts.next());
+    assert!(parts.next().is_none(), "more than MAX_RANGES parts");
+    let gate = StartGate::default();
+    let job = &job;
     #[cfg(test)]
     let pinned = crate::kernel::simd::tests::PINNED.with(core::cell::Cell::get);
     std::thread::scope(|scope| {
+        let opening = Opening(&gate);
         let mut handles: [Option<ScopedJoinHandle<'_, Option<R>>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
         let mut all_started = true;
-        for (part, handle) in parts.by_ref().zip(&mut handles) {
+        for (part, handle) in others.iter_mut().filter_map(Option::take).zip(&mut handles) {
+            let gate = &gate;
             let started = may_spawn().then(|| {
                 std::thread::Builder::new().spawn_scoped(scope, move || {
                     #[cfg(test)]
                     crate::kernel::simd::tests::PINNED.with(|path| path.set(pinned));
-                    wait_for_start().then(|| run_part(job, part))
+                    gate.wait().then(|| run_part(job, part))
                 })
             });
             *handle = started.and_then(Result::ok);
             all_started &= handle.is_some();
         }
-        assert!(parts.next().is_none(), "more than MAX_RANGES parts");
-        let (started, signal) = &gate;
-        *started.lock().unwrap_or_else(PoisonError::into_inner) = Some(all_started);
-        signal.notify_all();
+        gate.open(all_started);
+        drop(opening);
         let mut total = all_started.then(|| run_part(job, first));
         for handle in handles.iter_mut().filter_map(Option::take) {
             let result = handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
@@ -235,9 +228,50 @@ fn run_together_spawning<P: Send, R: Send>(
     })
 }
 
+/// Whether every thread of a [`run_together`] started, once the calling thread knows; the
+/// started ones wait for it.
+#[derive(Default)]
+struct StartGate {
+    all_started: Mutex<Option<bool>>,
+    opened: Condvar,
+}
+
+impl StartGate {
+    /// Says whether every thread started, unless that was said already.
+    fn open(&self, all_started: bool) {
+        self.all_started
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .get_or_insert(all_started);
+        self.opened.notify_all();
+    }
+
+    /// Waits until the gate opens; whether every thread started.
+    fn wait(&self) -> bool {
+        let mut all_started = self.all_started.lock().unwrap_or_else(PoisonError::into_inner);
+        loop {
+            match *all_started {
+                Some(all) => return all,
+                None => all_started = self.opened.wait(all_started).unwrap_or_else(PoisonError::into_inner),
+            }
+        }
+    }
+}
+
+/// Opens its gate with "not every thread started" when dropped before the gate was opened (a
+/// panic while starting them), so that no started thread waits for ever.
+struct Opening<'g>(&'g StartGate);
+
+impl Drop for Opening<'_> {
+    fn drop(&mut self) {
+        self.0.open(false);
+    }
+}
+
 /// The rounds of a job run by [`run_together`]: every job waits for the others at the end of
 /// each round. A job that ends early, by an error or a panic, still waits out its remaining
-/// rounds when this is dropped, so that the others never wait for it in vain.
+/// rounds when this is dropped, so that the others never wait for it in vain; a job makes its
+/// `Lockstep` first, before anything that could end it.
 pub struct Lockstep<'b> {
     barrier: &'b Barrier,
     rounds_left: usize,
@@ -490,6 +524,34 @@ mod tests {
             let expected = (0..parts).fold(0, |a, b| 10 * a + b);
             assert_eq!(merged, Some(expected), "{parts} parts");
         }
+    }
+
+    #[test]
+    #[should_panic(expected = "more than MAX_RANGES parts")]
+    fn run_together_refuses_more_parts_than_it_has_room_for() {
+        run_together(0..=MAX_RANGES, |x| x, |a, _| a);
+    }
+
+    /// A panic while the threads start (here the test's own hook) opens the gate for those
+    /// already started: they end without running, and the panic reaches the caller.
+    #[test]
+    fn a_panic_while_starting_releases_the_started_threads() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let (ran, attempt) = (AtomicUsize::new(0), AtomicUsize::new(0));
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let third_panics = || {
+                assert!(attempt.fetch_add(1, Ordering::Relaxed) < 2, "no third thread");
+                true
+            };
+            run_together_spawning(
+                0..4,
+                |_: usize| ran.fetch_add(1, Ordering::Relaxed),
+                |a, _| a,
+                third_panics,
+            )
+        }));
+        assert!(outcome.is_err());
+        assert_eq!(ran.load(Ordering::Relaxed), 0);
     }
 
     #[test]

@@ -21,8 +21,8 @@ pub(crate) struct Groups<'a> {
 }
 
 /// Words of search stack for `triangles` good triangles: a group takes at most one corner of each
-/// (a good triangle's corners are three welded vertices), and only a corner taken pushes, its two
-/// neighbours.
+/// (the first of the triangle's corners at the group's welded vertex), and only a corner taken
+/// pushes, its two neighbours.
 pub(crate) fn stack_words(triangles: usize) -> usize {
     2 * triangles + 2
 }

@@ -475,7 +475,7 @@ fn solve<S: tspace::Space>(
 
     // 9. Each group's sub-groups and their angle-weighted tangents (GenerateTSpaces, EvalTspace),
     //     on ranges of groups of about as many members each (a vertex's triangles can lie far
-    //     apart in the triangle order): a worker sorts its groups' triangles, evaluates the
+    //     apart in the triangle order): a worker sorts its groups' corners, evaluates the
     //     groups, and writes the corners in its range of good triangles, the others (spilled)
     //     once every worker is done.
     let ends = ranges.ends();

@@ -666,7 +666,10 @@ pub fn accumulate_in_chunks(
     };
     match parallel::run_together(scratch.split(ends).enumerate(), worker, parallel::merge_results) {
         Some(outcome) => outcome,
-        None => accumulate(mesh, options, scratch),
+        None => simd::run(
+            #[inline(always)]
+            || accumulate(mesh, options, scratch),
+        ),
     }
 }
 
