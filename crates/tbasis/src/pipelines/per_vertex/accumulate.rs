@@ -619,7 +619,7 @@ pub fn accumulate_in_chunks(
     ];
     let rounds = triangle_count.div_ceil(CHUNK_TRIANGLES) + 1;
     let (barrier, failed) = (Barrier::new(workers), AtomicBool::new(false));
-    let worker = |(d, part): (usize, Scratch)| -> Result<Report, Error> {
+    let worker = |(d, mut part): (usize, Scratch)| -> Result<Report, Error> {
         let mut lockstep = parallel::Lockstep::new(&barrier, rounds);
         // The lists this worker fills in a round, taken out of their places meanwhile.
         let mut own: [Vec<CornerTerm>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
@@ -645,9 +645,20 @@ pub fn accumulate_in_chunks(
                 let at = |w: usize| chunk.start + chunk.len() * w / workers;
                 // Forced inline, here and in `measure_into_lists`: a closure the compiler leaves
                 // out of line is compiled for the baseline only.
+                // The first range of a chunk follows every term its part has added so far: the
+                // first worker adds its own part's terms at once.
+                let first_part = (d == 0).then_some(&mut part);
                 let measured = simd::run(
                     #[inline(always)]
-                    || measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), ends, own, room),
+                    || {
+                        let sinks = TermSinks {
+                            ends,
+                            lists: own,
+                            first_part,
+                            room,
+                        };
+                        measure_into_lists(mesh, texcoords, options, at(d)..at(d + 1), sinks)
+                    },
                 );
                 for (list, place) in own.iter_mut().zip(places) {
                     *lock(place) = core::mem::take(list);
@@ -673,18 +684,31 @@ pub fn accumulate_in_chunks(
     }
 }
 
-/// Measures `triangles` ([`measure`]) into `lists`, one per part of the vertex ranges ending at
-/// `ends`, each term into its vertex's part's list; a full list grows by `room` terms.
+/// Where [`measure_into_lists`] puts each corner term: the list of its vertex's part (the parts'
+/// vertex ranges end at `ends`), which grows by `room` terms when full, or, for the first part
+/// when it is given, that part's sums at once.
+struct TermSinks<'l, 's, 'a> {
+    ends: &'l [usize],
+    lists: &'l mut [Vec<CornerTerm>],
+    first_part: Option<&'s mut Scratch<'a>>,
+    room: usize,
+}
+
+/// Measures `triangles` ([`measure`]) into `sinks`.
 #[inline(always)]
 fn measure_into_lists(
     mesh: &Mesh,
     texcoords: Strided<[f32; 2]>,
     options: &Options,
     triangles: Range<usize>,
-    ends: &[usize],
-    lists: &mut [Vec<CornerTerm>],
-    room: usize,
+    sinks: TermSinks,
 ) -> Result<Report, Error> {
+    let TermSinks {
+        ends,
+        lists,
+        mut first_part,
+        room,
+    } = sinks;
     let (mut found, mut out_of_memory) = (Report::default(), false);
     let everything = |_: &[usize; 3]| true;
     measure(
@@ -702,7 +726,13 @@ fn measure_into_lists(
                 vertex: v as u32,
                 ..term
             };
-            let list = &mut lists[ends.partition_point(|&end| end <= v)];
+            let part = ends.partition_point(|&end| end <= v);
+            if let Some(first) = first_part.as_deref_mut().filter(|_| part == 0) {
+                let slot = v - first.first;
+                term.add_to(&mut first.sums[slot], &mut first.flags[slot]);
+                return;
+            }
+            let list = &mut lists[part];
             if list.len() == list.capacity() && list.try_reserve(room.max(1)).is_err() {
                 out_of_memory = true;
                 return;
