@@ -585,7 +585,9 @@ fn lock(list: &Mutex<Vec<CornerTerm>>) -> MutexGuard<'_, Vec<CornerTerm>> {
 /// `scratch` is cut into the consecutive vertex ranges ending at `ends`, one per worker. Each
 /// worker measures a consecutive range of each chunk of triangles, keeping each corner's term in
 /// a list for the part that holds its vertex; in the next round each part adds its lists, from
-/// the first range to the last, so that every vertex still adds its terms in triangle order.
+/// the first range to the last, so that every vertex still adds its terms in triangle order. The
+/// first range of a chunk follows everything its part has added, so the first worker adds its own
+/// part's terms at once.
 /// Round `r` adds chunk `r - 1` and measures chunk `r`; the workers run side by side from the
 /// first round to the last, and wait for one another between rounds. When their threads cannot
 /// all be started, one worker does everything.
