@@ -645,11 +645,11 @@ pub fn accumulate_in_chunks(
                 let chunk =
                     (round * CHUNK_TRIANGLES).min(triangle_count)..((round + 1) * CHUNK_TRIANGLES).min(triangle_count);
                 let at = |w: usize| chunk.start + chunk.len() * w / workers;
-                // Forced inline, here and in `measure_into_lists`: a closure the compiler leaves
-                // out of line is compiled for the baseline only.
                 // The first range of a chunk follows every term its part has added so far: the
                 // first worker adds its own part's terms at once.
                 let first_part = (d == 0).then_some(&mut part);
+                // Forced inline, here and in `measure_into_lists`: a closure the compiler leaves
+                // out of line is compiled for the baseline only.
                 let measured = simd::run(
                     #[inline(always)]
                     || {
