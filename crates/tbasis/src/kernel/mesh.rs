@@ -422,6 +422,16 @@ pub(crate) struct OutputPart<'a> {
 }
 
 impl OutputPart<'_> {
+    /// The tangents as a packed array, when nothing else is written and they sit packed
+    /// ([`StridedMut::packed_mut`]).
+    #[inline(always)]
+    pub(crate) fn packed_tangents(&mut self) -> Option<&mut [[f32; 4]]> {
+        match self.bitangents {
+            None => self.tangents.packed_mut(),
+            Some(_) => None,
+        }
+    }
+
     /// Writes vertex `v`: tangent `(t, w)` and, when wanted, the bitangent `w * cross(n, t)`.
     #[inline(always)]
     pub(crate) fn write(&mut self, v: usize, t: glam::Vec3, w: f32, n: glam::Vec3) {

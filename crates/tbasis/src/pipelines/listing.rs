@@ -3,16 +3,23 @@
 //! Kept apart from the other kernels on purpose: every float operation here runs in the listing's
 //! order, so policy LEGACY reproduces its bits, including the inf/NaN it writes when a triangle's
 //! UV determinant is zero. Rust never fuses a multiply and an add, so no FMA changes a result.
+//! Both loops run on x, y and z at once or on several vertices at once, compiled for each SIMD
+//! path ([`crate::kernel::simd`]); the same operations per component give the same bits. One
+//! thing IEEE arithmetic leaves to operand order, which the compiler may choose per path, is
+//! which of two NaNs an operation passes on; so every NaN here is the CPU's default NaN (a
+//! caller's NaN included), where the listing passes on whichever its compiler picks.
 #![forbid(unsafe_code)]
 
-use glam::Vec3;
+use glam::{Vec2, Vec3, Vec3A, Vec4};
 
 use crate::kernel::error::Error;
+use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES};
 use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType, Target};
 use crate::kernel::options::Options;
 use crate::kernel::parallel;
 use crate::kernel::report::Report;
+use crate::kernel::simd;
 use crate::kernel::sums::{self, count_flags, flag, slot_in, Scratch, VertexSums};
 use crate::kernel::views::strided::Strided;
 
@@ -62,14 +69,25 @@ fn run(
         });
     };
     let workers = parallel::worker_count(options.threads, mesh);
-    let first_loop = |part: &mut Scratch, _: Option<&mut OutputPart>| accumulate(mesh, texcoords, options.flip_v, part);
+    // Forced inline: a closure left out of line is compiled for the baseline only.
+    let first_loop = |part: &mut Scratch, _: Option<&mut OutputPart>| {
+        simd::run(
+            #[inline(always)]
+            || accumulate(mesh, texcoords, options.flip_v, part),
+        )
+    };
     let mut found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
     count_flags(scratch.flags, &mut found);
     sums::for_each_range(
         scratch,
         output,
         workers,
-        |part, out| resolve(mesh, part, out),
+        |part, out| {
+            simd::run(
+                #[inline(always)]
+                || resolve(mesh, part, out),
+            )
+        },
         |(), ()| (),
     );
     *report = found;
@@ -80,6 +98,7 @@ fn run(
 /// and add `sdir` (dP/du) to `tan1`, `tdir` (dP/dv) to `tan2` of its three vertices, in triangle
 /// order, for the vertices `scratch` holds. Also checks every index, and counts the
 /// zero-determinant or non-finite triangles whose first vertex it holds.
+#[inline(always)]
 pub fn accumulate(
     mesh: &Mesh,
     texcoords: Strided<[f32; 2]>,
@@ -119,12 +138,11 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
     fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
         let FirstLoop { listing, scratch } = self;
         let vertex_count = listing.mesh.vertex_count();
-        if scratch.first == 0 && scratch.flags.len() == vertex_count {
-            let (sums, flags) = (&mut scratch.sums[..vertex_count], &mut scratch.flags[..vertex_count]);
+        let (first, len) = (scratch.first, scratch.flags.len());
+        let (sums, flags) = (&mut scratch.sums[..len], &mut scratch.flags[..len]);
+        if first == 0 && len == vertex_count {
             listing.sweep(sums, flags, corners, Some)
         } else {
-            let (first, len) = (scratch.first, scratch.flags.len());
-            let (sums, flags) = (&mut scratch.sums[..len], &mut scratch.flags[..len]);
             listing.sweep(sums, flags, corners, move |v| slot_in(v, first, len))
         }
     }
@@ -153,9 +171,12 @@ impl Listing<'_> {
             for v in [i1, i2, i3] {
                 let Some(slot) = slot(v) else { continue };
                 let vertex = &mut sums[slot];
-                for k in 0..3 {
-                    vertex.primary[k] += sdir[k];
-                    vertex.secondary[k] += tdir[k];
+                // `tan1` and the unused `weight` beside it in one 4-lane add (`weight` stays +0).
+                let [x, y, z] = vertex.primary;
+                let tan1 = Vec4::new(x, y, z, vertex.weight) + sdir.extend(0.0);
+                (vertex.primary, vertex.weight) = (tan1.truncate().to_array(), tan1.w);
+                for (sum, term) in vertex.secondary.iter_mut().zip(tdir.to_array()) {
+                    *sum += term;
                 }
                 flags[slot] |= flag::REFERENCED | orientation;
             }
@@ -164,71 +185,154 @@ impl Listing<'_> {
     }
 
     /// One triangle of the listing: `sdir`, `tdir`, and the orientation flag of its UV winding
-    /// (0 when the determinant is zero or an edge is not finite).
+    /// (the sign of `det`, or 0 when `det` is zero or one of the ten edge components is not
+    /// finite).
+    ///
+    /// Each line of the arithmetic runs on x, y and z at once (the same operations per component,
+    /// so the same bits). Testing the ten edge components costs more than the solve, so the
+    /// common case is settled from `det` and `sdir`: when both are finite (and `det` is not zero),
+    /// so is every edge, hence every input. A non-finite `s` or `t` makes `det` non-finite (a
+    /// product with ±inf or NaN is ±inf or NaN, and so is a difference with one). With `det`
+    /// finite and not zero, `r = 1 / det` is neither zero nor NaN, so a non-finite `x1` or `x2`
+    /// makes `sdir.x = (t2 x1 - t1 x2) r` non-finite (likewise y and z). Any other triangle takes
+    /// [`solve_with_special_values`].
     #[inline(always)]
-    fn solve(&self, i1: usize, i2: usize, i3: usize) -> ([f32; 3], [f32; 3], u8) {
+    fn solve(&self, i1: usize, i2: usize, i3: usize) -> (Vec3A, Vec3A, u8) {
         let positions = self.mesh.positions;
-        let (v1, v2, v3) = (positions.get(i1), positions.get(i2), positions.get(i3));
-        let (w1, w2, w3) = (self.texcoords.get(i1), self.texcoords.get(i2), self.texcoords.get(i3));
-
-        let x1 = v2[0] - v1[0];
-        let x2 = v3[0] - v1[0];
-        let y1 = v2[1] - v1[1];
-        let y2 = v3[1] - v1[1];
-        let z1 = v2[2] - v1[2];
-        let z2 = v3[2] - v1[2];
-
-        let s1 = w2[0] - w1[0];
-        let s2 = w3[0] - w1[0];
-        let t1 = (w2[1] - w1[1]) * self.v_sign;
-        let t2 = (w3[1] - w1[1]) * self.v_sign;
+        let [v1, v2, v3] = [i1, i2, i3].map(|v| positions.get(v));
+        let [w1, w2, w3] = [i1, i2, i3].map(|v| Vec2::from_array(self.texcoords.get(v)));
+        let (p1, p2, p3) = (Vec3A::from_array(v1), Vec3A::from_array(v2), Vec3A::from_array(v3));
+        let (e1, e2) = (p2 - p1, p3 - p1);
+        let (s1, s2) = (w2.x - w1.x, w3.x - w1.x);
+        let (t1, t2) = ((w2.y - w1.y) * self.v_sign, (w3.y - w1.y) * self.v_sign);
 
         let det = s1 * t2 - s2 * t1;
         let r = 1.0f32 / det;
-        let sdir = [
-            (t2 * x1 - t1 * x2) * r,
-            (t2 * y1 - t1 * y2) * r,
-            (t2 * z1 - t1 * z2) * r,
-        ];
-        let tdir = [
-            (s1 * x2 - s2 * x1) * r,
-            (s1 * y2 - s2 * y1) * r,
-            (s1 * z2 - s2 * z1) * r,
-        ];
-
-        // Without short-circuit: ten tests and no branch.
-        let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2]
-            .iter()
-            .fold(true, |all, x| all & x.is_finite());
-        let orientation = if det == 0.0 || !finite {
-            0
-        } else if det > 0.0 {
-            flag::POSITIVE_UV
+        let sdir = (e1 * t2 - e2 * t1) * r;
+        let tdir = (e2 * s1 - e1 * s2) * r;
+        // x * 0 is zero exactly when x is finite.
+        let finite = ((sdir + Vec3A::splat(det)) * 0.0).cmpeq(Vec3A::ZERO).all();
+        if det != 0.0 && finite {
+            (sdir, tdir, side(det))
         } else {
-            flag::NEGATIVE_UV
-        };
-        (sdir, tdir, orientation)
+            let texcoords = [w1, w2, w3].map(|w| w.to_array());
+            solve_with_special_values([v1, v2, v3], texcoords, self.v_sign)
+        }
+    }
+}
+
+/// [`Listing::solve`] for a triangle with a zero `det` or a non-finite value, compiled once, out
+/// of line, so that every SIMD path runs the same code on it. Its NaNs leave as the CPU's
+/// default NaN: then every NaN the sums and the second loop meet is that one, and no choice of
+/// operand order by the compiler (which differs between SIMD paths) can change a bit.
+#[cold]
+#[inline(never)]
+fn solve_with_special_values(v: [[f32; 3]; 3], w: [[f32; 2]; 3], v_sign: f32) -> (Vec3A, Vec3A, u8) {
+    let edge = |k: usize| (v[1][k] - v[0][k], v[2][k] - v[0][k]);
+    let [(x1, x2), (y1, y2), (z1, z2)] = [0, 1, 2].map(edge);
+    let (s1, s2) = (w[1][0] - w[0][0], w[2][0] - w[0][0]);
+    let (t1, t2) = ((w[1][1] - w[0][1]) * v_sign, (w[2][1] - w[0][1]) * v_sign);
+
+    let det = s1 * t2 - s2 * t1;
+    let r = 1.0f32 / det;
+    let sdir = [
+        (t2 * x1 - t1 * x2) * r,
+        (t2 * y1 - t1 * y2) * r,
+        (t2 * z1 - t1 * z2) * r,
+    ];
+    let tdir = [
+        (s1 * x2 - s2 * x1) * r,
+        (s1 * y2 - s2 * y1) * r,
+        (s1 * z2 - s2 * z1) * r,
+    ];
+
+    let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2].iter().all(|x| x.is_finite());
+    let orientation = if det == 0.0 || !finite { 0 } else { side(det) };
+    let nan = default_nan();
+    let canonical = |x: f32| if x.is_nan() { nan } else { x };
+    (
+        Vec3A::from_array(sdir.map(canonical)),
+        Vec3A::from_array(tdir.map(canonical)),
+        orientation,
+    )
+}
+
+/// The NaN this CPU's arithmetic produces (`0 / 0`), not a constant the compiler would pick.
+fn default_nan() -> f32 {
+    core::hint::black_box(0.0f32) / core::hint::black_box(0.0f32)
+}
+
+/// `n` with every NaN component made `nan` (see [`solve_with_special_values`]).
+#[inline(always)]
+fn canonical_nan(n: Vec3, nan: f32) -> Vec3 {
+    Vec3::select(n.is_nan_mask(), Vec3::splat(nan), n)
+}
+
+/// The flag of a non-zero determinant's sign.
+#[inline(always)]
+fn side(det: f32) -> u8 {
+    if det > 0.0 {
+        flag::POSITIVE_UV
+    } else {
+        flag::NEGATIVE_UV
     }
 }
 
 /// Second loop of the listing: `T' = normalize(t - n * dot(n, t))`,
 /// `w = dot(cross(n, t), tan2) < 0 ? -1 : 1`. Without an `output` (the per-corner output) each
 /// vertex keeps its frame in its sums instead.
+#[inline(always)]
 pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut OutputPart>) {
-    for (slot, sums) in scratch.sums.iter_mut().enumerate() {
-        let a = scratch.first + slot;
-        let n = Vec3::from_array(mesh.normals.get(a));
-        let t = Vec3::from_array(sums.primary);
-        let tan2 = Vec3::from_array(sums.secondary);
-
-        let orthogonal = t - n * dot(n, t);
-        let tangent = orthogonal * (1.0 / dot(orthogonal, orthogonal).sqrt());
-        let w = if dot(cross(n, t), tan2) < 0.0 { -1.0 } else { 1.0 };
+    let vertices = scratch.first..scratch.first + scratch.sums.len();
+    let packed_normals = mesh.normals.packed().map(|normals| &normals[vertices.clone()]);
+    let packed_tangents = output.as_deref_mut().and_then(OutputPart::packed_tangents);
+    // The normals' NaNs made the one the sums hold (see [`solve_with_special_values`]).
+    let nan = default_nan();
+    if let (Some(normals), Some(tangents)) = (packed_normals, packed_tangents) {
+        return resolve_packed(normals, scratch.sums, tangents, nan);
+    }
+    for (a, sums) in vertices.zip(scratch.sums.iter_mut()) {
+        let n = canonical_nan(Vec3::from_array(mesh.normals.get(a)), nan);
+        let (tangent, w) = frame(n, Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
         match output.as_deref_mut() {
             Some(output) => output.write(a, tangent, w, n),
             None => sums.keep_frame(tangent, w),
         }
     }
+}
+
+/// [`resolve`] from packed normals into packed tangents, [`LANES`] vertices at a time in SIMD
+/// lanes (the same operations on every lane, so the same bits).
+#[inline(always)]
+fn resolve_packed(normals: &[[f32; 3]], sums: &[VertexSums], tangents: &mut [[f32; 4]], nan: f32) {
+    let (mut n, mut tan1, mut tan2) = ([[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3]);
+    let mut frames = [[0.0; LANES]; 4];
+    let batches = normals.chunks(LANES).zip(sums.chunks(LANES));
+    for ((normals, sums), tangents) in batches.zip(tangents.chunks_mut(LANES)) {
+        for (i, (normal, sums)) in normals.iter().zip(sums).enumerate() {
+            set_lane3(&mut n, i, *normal);
+            set_lane3(&mut tan1, i, sums.primary);
+            set_lane3(&mut tan2, i, sums.secondary);
+        }
+        for i in 0..lanes_in_use(normals.len()) {
+            let (t, w) = frame(canonical_nan(lane3(&n, i), nan), lane3(&tan1, i), lane3(&tan2, i));
+            for (lanes, value) in frames.iter_mut().zip([t.x, t.y, t.z, w]) {
+                lanes[i] = value;
+            }
+        }
+        for (i, tangent) in tangents.iter_mut().enumerate() {
+            *tangent = [frames[0][i], frames[1][i], frames[2][i], frames[3][i]];
+        }
+    }
+}
+
+/// One vertex of the listing's second loop: its unit tangent and `w`.
+#[inline(always)]
+fn frame(n: Vec3, t: Vec3, tan2: Vec3) -> (Vec3, f32) {
+    let orthogonal = t - n * dot(n, t);
+    let tangent = orthogonal * (1.0 / dot(orthogonal, orthogonal).sqrt());
+    let w = if dot(cross(n, t), tan2) < 0.0 { -1.0 } else { 1.0 };
+    (tangent, w)
 }
 
 /// The listing's `Dot`: `x*x' + y*y' + z*z'`, summed left to right.
@@ -247,6 +351,7 @@ fn cross(a: Vec3, b: Vec3) -> Vec3 {
 mod tests {
     use super::*;
     use crate::kernel::test_rng::TestRng;
+    use crate::kernel::views::strided::StridedMut;
 
     /// The orientation flag by its definition: zero when the UV determinant is zero or any of the
     /// ten edge components is not finite, else the determinant's sign.
@@ -312,5 +417,72 @@ mod tests {
         }
         // Every outcome occurs, each many times.
         assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
+    }
+
+    /// The listing's loops read packed arrays as slices and other layouts through strided views:
+    /// both give the same bits, on values that reach every branch (zero and infinite edges,
+    /// overflowing `sdir`). Without NaN inputs: where NaNs of both signs meet, which one an
+    /// operation passes on depends on its operand order, which the compiler may choose per loop.
+    #[test]
+    fn packed_and_strided_arrays_give_the_same_bits() {
+        let palette = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5,
+            3e38,
+            -3e38,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            1e-45,
+        ];
+        let mut rng = TestRng(0x9AC4);
+        let vertex_count = 301;
+        let mut pick = || {
+            if rng.chance(97) {
+                rng.unit() * 4.0 - 2.0
+            } else {
+                palette[rng.below(palette.len())]
+            }
+        };
+        let record: Vec<[f32; 9]> = (0..vertex_count).map(|_| core::array::from_fn(|_| pick())).collect();
+        let positions: Vec<[f32; 3]> = record.iter().map(|r| [r[0], r[1], r[2]]).collect();
+        let normals: Vec<[f32; 3]> = record.iter().map(|r| [r[3], r[4], r[5]]).collect();
+        let texcoords: Vec<[f32; 2]> = record.iter().map(|r| [r[6], r[7]]).collect();
+        let mut rng = TestRng(0x51DE);
+        let indices: Vec<u32> = (0..3 * 1000).map(|_| rng.below(vertex_count) as u32).collect();
+        let options = Options::default()
+            .with_method(crate::Method::Lengyel)
+            .with_policy(crate::DegeneratePolicy::Legacy);
+
+        let packed = Mesh::new(&positions[..], &normals[..])
+            .with_texcoords(&texcoords[..])
+            .with_indices(&indices[..]);
+        let mut packed_tangents = vec![[0.0f32; 4]; vertex_count];
+        crate::generate(&packed, &options, &mut Output::new(&mut packed_tangents[..])).unwrap();
+
+        // The same vertices in 36-byte records, and tangents in 20-byte ones.
+        let bytes: Vec<u8> = record.iter().flatten().flat_map(|x| x.to_ne_bytes()).collect();
+        let view = |offset: usize| &bytes[offset..];
+        let strided = Mesh::new(
+            Strided::from_bytes(view(0), 36, vertex_count).unwrap(),
+            Strided::from_bytes(view(12), 36, vertex_count).unwrap(),
+        )
+        .with_texcoords(Strided::from_bytes(view(24), 36, vertex_count).unwrap())
+        .with_indices(&indices[..]);
+        let mut tangent_bytes = vec![0u8; 20 * vertex_count];
+        let tangents = StridedMut::from_bytes(&mut tangent_bytes, 20, vertex_count).unwrap();
+        crate::generate(&strided, &options, &mut Output::new(tangents)).unwrap();
+
+        let strided_tangents: Vec<u32> = tangent_bytes
+            .chunks(20)
+            .flat_map(|r| r[..16].chunks(4))
+            .map(|x| u32::from_ne_bytes(x.try_into().unwrap()))
+            .collect();
+        let packed_bits: Vec<u32> = packed_tangents.iter().flatten().map(|x| x.to_bits()).collect();
+        assert_eq!(packed_bits, strided_tangents);
+        // The values reach every branch: finite frames, and frames a non-finite sum spoils.
+        assert!(packed_tangents.iter().any(|t| t.iter().all(|x| x.is_finite())));
+        assert!(packed_tangents.iter().any(|t| t[0].is_nan()));
     }
 }

@@ -312,6 +312,22 @@ impl<'a, T: Element> Strided<'a, T> {
         unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() }
     }
 
+    /// The elements as a slice, when they sit packed (`stride` is the element's size) at an address
+    /// aligned for `T`: a kernel reads them as a plain array, in loops the compiler can vectorize.
+    #[inline(always)]
+    pub(crate) fn packed(&self) -> Option<&[T]> {
+        if self.stride != size_of::<T>() || !self.base.cast::<T>().is_aligned() {
+            return None;
+        }
+        if self.len == 0 {
+            return Some(&[]);
+        }
+        // SAFETY: the constructor's contract makes the `len * size_of::<T>()` bytes from `base`
+        // readable and unwritten while the view is read (for as long as this borrow of it), `T`
+        // is valid for any bytes (`Element`), and `base` is aligned for it.
+        Some(unsafe { core::slice::from_raw_parts(self.base.cast::<T>(), self.len) })
+    }
+
     /// Where the view's bytes are, for overlap tests.
     ///
     /// ```
@@ -477,6 +493,22 @@ impl<'a, T: Element> StridedMut<'a, T> {
         assert!(i < self.len, "strided write out of bounds");
         // SAFETY: i < len and the constructor's contract covers every element below len.
         unsafe { self.base.add(i * self.stride).cast::<T>().write_unaligned(value) }
+    }
+
+    /// The elements as a mutable slice, when they sit packed at an address aligned for `T` (see
+    /// [`Strided::packed`]).
+    #[inline(always)]
+    pub(crate) fn packed_mut(&mut self) -> Option<&mut [T]> {
+        if self.stride != size_of::<T>() || !self.base.cast::<T>().is_aligned() {
+            return None;
+        }
+        if self.len == 0 {
+            return Some(&mut []);
+        }
+        // SAFETY: the constructor's contract makes the `len * size_of::<T>()` bytes from `base`
+        // writable and untouched through other pointers while the view lives (this borrow of it
+        // is exclusive), `T` is valid for any bytes (`Element`), and `base` is aligned for it.
+        Some(unsafe { core::slice::from_raw_parts_mut(self.base.cast::<T>(), self.len) })
     }
 
     /// Where the view's bytes are, for overlap tests.
