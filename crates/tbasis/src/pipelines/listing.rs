@@ -190,12 +190,14 @@ impl Listing<'_> {
     ///
     /// Each line of the arithmetic runs on x, y and z at once (the same operations per component,
     /// so the same bits). Testing the ten edge components costs more than the solve, so the
-    /// common case is settled from `det` and `sdir`: when both are finite (and `det` is not zero),
-    /// so is every edge, hence every input. A non-finite `s` or `t` makes `det` non-finite (a
-    /// product with ±inf or NaN is ±inf or NaN, and so is a difference with one). With `det`
-    /// finite and not zero, `r = 1 / det` is neither zero nor NaN, so a non-finite `x1` or `x2`
-    /// makes `sdir.x = (t2 x1 - t1 x2) r` non-finite (likewise y and z). Any other triangle takes
-    /// [`solve_with_special_values`].
+    /// common case is settled from `det` and the numerator of `sdir`, `t2 Q1 - t1 Q2` (before the
+    /// division, which it then does not wait for): when both are finite, so is every edge, hence
+    /// every input. A non-finite `s` or `t` makes `det` non-finite (a product with ±inf or NaN is
+    /// ±inf or NaN, and so is a difference with one); with finite `s` and `t`, a non-finite `x1`
+    /// makes `t2 x1` non-finite (NaN when `t2` is zero), hence `t2 x1 - t1 x2` (likewise `x2`, y
+    /// and z). A triangle with a zero `det` or a non-finite input takes
+    /// [`solve_with_special_values`]; the others hold no NaN but those their own arithmetic
+    /// makes.
     #[inline(always)]
     fn solve(&self, i1: usize, i2: usize, i3: usize) -> (Vec3A, Vec3A, u8) {
         let positions = self.mesh.positions;
@@ -208,10 +210,11 @@ impl Listing<'_> {
 
         let det = s1 * t2 - s2 * t1;
         let r = 1.0f32 / det;
-        let sdir = (e1 * t2 - e2 * t1) * r;
+        let sdir_numerator = e1 * t2 - e2 * t1;
+        let sdir = sdir_numerator * r;
         let tdir = (e2 * s1 - e1 * s2) * r;
         // x * 0 is zero exactly when x is finite.
-        let finite = ((sdir + Vec3A::splat(det)) * 0.0).cmpeq(Vec3A::ZERO).all();
+        let finite = ((sdir_numerator + Vec3A::splat(det)) * 0.0).cmpeq(Vec3A::ZERO).all();
         if det != 0.0 && finite {
             (sdir, tdir, side(det))
         } else {
