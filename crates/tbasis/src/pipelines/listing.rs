@@ -353,6 +353,8 @@ fn cross(a: Vec3, b: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::simd::tests::PINNED;
+    use crate::kernel::simd::Path;
     use crate::kernel::test_rng::TestRng;
     use crate::kernel::views::strided::StridedMut;
 
@@ -422,12 +424,11 @@ mod tests {
         assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
     }
 
-    /// The listing's loops read packed arrays as slices and other layouts through strided views:
-    /// both give the same bits, on values that reach every branch (zero and infinite edges,
-    /// overflowing `sdir`). Without NaN inputs: where NaNs of both signs meet, which one an
-    /// operation passes on depends on its operand order, which the compiler may choose per loop.
+    /// The listing's loops read packed arrays as slices and other layouts through strided views,
+    /// and run compiled for each SIMD path: all give the same bits, on values that reach every
+    /// branch (zero and non-finite edges, overflowing `sdir`, NaNs of both signs in every input).
     #[test]
-    fn packed_and_strided_arrays_give_the_same_bits() {
+    fn packed_and_strided_arrays_give_the_same_bits_on_every_simd_path() {
         let palette = [
             0.0,
             -0.0,
@@ -437,12 +438,14 @@ mod tests {
             -3e38,
             f32::INFINITY,
             f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
             1e-45,
         ];
         let mut rng = TestRng(0x9AC4);
         let vertex_count = 301;
         let mut pick = || {
-            if rng.chance(97) {
+            if rng.chance(92) {
                 rng.unit() * 4.0 - 2.0
             } else {
                 palette[rng.below(palette.len())]
@@ -461,9 +464,6 @@ mod tests {
         let packed = Mesh::new(&positions[..], &normals[..])
             .with_texcoords(&texcoords[..])
             .with_indices(&indices[..]);
-        let mut packed_tangents = vec![[0.0f32; 4]; vertex_count];
-        crate::generate(&packed, &options, &mut Output::new(&mut packed_tangents[..])).unwrap();
-
         // The same vertices in 36-byte records, and tangents in 20-byte ones.
         let bytes: Vec<u8> = record.iter().flatten().flat_map(|x| x.to_ne_bytes()).collect();
         let view = |offset: usize| &bytes[offset..];
@@ -473,19 +473,39 @@ mod tests {
         )
         .with_texcoords(Strided::from_bytes(view(24), 36, vertex_count).unwrap())
         .with_indices(&indices[..]);
-        let mut tangent_bytes = vec![0u8; 20 * vertex_count];
-        let tangents = StridedMut::from_bytes(&mut tangent_bytes, 20, vertex_count).unwrap();
-        crate::generate(&strided, &options, &mut Output::new(tangents)).unwrap();
 
-        let strided_tangents: Vec<u32> = tangent_bytes
-            .chunks(20)
-            .flat_map(|r| r[..16].chunks(4))
-            .map(|x| u32::from_ne_bytes(x.try_into().unwrap()))
-            .collect();
-        let packed_bits: Vec<u32> = packed_tangents.iter().flatten().map(|x| x.to_bits()).collect();
-        assert_eq!(packed_bits, strided_tangents);
+        // Packed tangents, or the same in 20-byte records.
+        let run = |path: Path, mesh: &Mesh, packed_output: bool| {
+            let mut frames = vec![[0.0f32; 4]; vertex_count];
+            let mut records = vec![0u8; 20 * vertex_count];
+            PINNED.with(|p| p.set(Some(path)));
+            let output = match packed_output {
+                true => Output::new(&mut frames[..]),
+                false => Output::new(StridedMut::from_bytes(&mut records, 20, vertex_count).unwrap()),
+            };
+            crate::generate(mesh, &options, &mut { output }).unwrap();
+            PINNED.with(|p| p.set(None));
+            if !packed_output {
+                for (frame, record) in frames.iter_mut().zip(records.chunks(20)) {
+                    *frame = core::array::from_fn(|k| f32::from_ne_bytes(record[4 * k..4 * k + 4].try_into().unwrap()));
+                }
+            }
+            frames
+        };
+        let bits = |frames: &[[f32; 4]]| frames.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>();
+        let packed_tangents = run(Path::Baseline, &packed, true);
+        for path in [Path::Baseline, Path::Avx2].into_iter().filter(|p| p.supported()) {
+            for (mesh, packed_output, layout) in [(&packed, true, "packed"), (&strided, false, "strided")] {
+                let tangents = run(path, mesh, packed_output);
+                assert_eq!(bits(&tangents), bits(&packed_tangents), "{layout} on {path:?}");
+            }
+        }
         // The values reach every branch: finite frames, and frames a non-finite sum spoils.
         assert!(packed_tangents.iter().any(|t| t.iter().all(|x| x.is_finite())));
         assert!(packed_tangents.iter().any(|t| t[0].is_nan()));
+        assert!(packed_tangents
+            .iter()
+            .flatten()
+            .any(|x| x.is_nan() && x.is_sign_negative()));
     }
 }

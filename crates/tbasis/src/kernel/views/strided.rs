@@ -724,4 +724,44 @@ mod tests {
         let view = Strided::<[f32; 3]>::from_bytes(&bytes[1..], 17, 3).unwrap();
         assert_eq!(view.get(2), [2.0, 1.5, -2.0]);
     }
+
+    /// A view is read as a slice only when its elements sit packed at an address aligned for
+    /// them; the slice holds the view's elements.
+    #[test]
+    fn only_packed_aligned_views_are_slices() {
+        let floats: Vec<f32> = (0..13).map(|i| i as f32).collect();
+        let bytes: Vec<u8> = floats.iter().flat_map(|x| x.to_ne_bytes()).collect();
+        let packed = Strided::<[f32; 3]>::from_slice(&[[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]][..])
+            .packed()
+            .map(<[_]>::to_vec);
+        assert_eq!(packed, Some(vec![[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]]));
+        let aligned = floats.as_ptr() as usize % 4 == 0 && bytes.as_ptr() as usize % 4 == 0;
+        assert!(
+            aligned,
+            "Vec<f32> and a 52-byte Vec<u8> come 4-byte aligned from the allocator"
+        );
+        assert!(Strided::<[f32; 3]>::from_bytes(&bytes, 16, 3)
+            .unwrap()
+            .packed()
+            .is_none());
+        assert!(Strided::<[f32; 3]>::from_bytes(&bytes[1..], 12, 4)
+            .unwrap()
+            .packed()
+            .is_none());
+        let from_bytes = Strided::<[f32; 3]>::from_bytes(&bytes[4..], 12, 4).unwrap();
+        assert_eq!(from_bytes.packed().unwrap()[3], [10.0, 11.0, 12.0]);
+
+        let mut out = vec![0u8; 40];
+        assert!(StridedMut::<[f32; 4]>::from_bytes(&mut out, 20, 2)
+            .unwrap()
+            .packed_mut()
+            .is_none());
+        assert!(StridedMut::<[f32; 4]>::from_bytes(&mut out[2..], 16, 2)
+            .unwrap()
+            .packed_mut()
+            .is_none());
+        let mut frames = [[0.0f32; 4]; 2];
+        StridedMut::from_slice(&mut frames[..]).packed_mut().unwrap()[1] = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(frames[1], [1.0, 2.0, 3.0, 4.0]);
+    }
 }
