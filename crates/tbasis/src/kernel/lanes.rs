@@ -12,6 +12,11 @@ use crate::kernel::views::strided::Strided;
 /// Triangles per batch: the gathered copies (about 8 KiB) stay in the L1 cache.
 pub(crate) const LANES: usize = 64;
 
+/// How many triangles ahead a reader asks for indices: a worker that keeps few of the triangles
+/// (those with a corner in its vertex range) reads indices faster than memory streams them
+/// unasked.
+pub(crate) const PREFETCH_TRIANGLES: usize = 64;
+
 /// One value per triangle of a batch.
 pub type Lanes = [f32; LANES];
 
@@ -105,6 +110,7 @@ impl<'m, K: Fn(&[usize; 3]) -> bool> BatchReader<'m, K> {
         while batch.len < LANES && self.next < self.end {
             let t = self.next;
             self.next += 1;
+            self.mesh.indices.prefetch_triangle(t + PREFETCH_TRIANGLES);
             let corners = self.mesh.checked_triangle(t)?;
             if !(self.keep)(&corners) {
                 continue;

@@ -105,6 +105,17 @@ impl<'a> Indices<'a> {
         }
     }
 
+    /// Asks the CPU to bring triangle `t`'s indices into its cache ahead of a read (a hint, for
+    /// loops that read indices faster than memory streams them unasked).
+    #[inline(always)]
+    pub(crate) fn prefetch_triangle(&self, t: usize) {
+        match self {
+            Indices::None => {}
+            Indices::U16(view) => view.prefetch(3 * t),
+            Indices::U32(view) => view.prefetch(3 * t),
+        }
+    }
+
     /// Where the index bytes are, if there are any.
     ///
     /// ```

@@ -75,15 +75,25 @@ unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
 /// would each wait for memory (a hash table's probes) overlap. A hint: it changes no result.
 #[inline(always)]
 pub(crate) fn prefetch<T>(items: &[T], index: usize) {
-    #[cfg(target_arch = "x86_64")]
     if let Some(item) = items.get(index) {
+        prefetch_address((item as *const T).cast());
+    }
+}
+
+/// Asks the CPU to bring the bytes at `address` into its cache ahead of a read (see
+/// [`prefetch`]). Any address will do: a prefetch never faults and reads nothing the program can
+/// observe.
+#[inline(always)]
+pub(crate) fn prefetch_address(address: *const u8) {
+    #[cfg(target_arch = "x86_64")]
+    {
         use core::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        // SAFETY: SSE is part of x86-64, and a prefetch of an address inside `items` reads
-        // nothing the program can observe.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>((item as *const T).cast()) }
+        // SAFETY: SSE is part of x86-64, and a prefetch has no effect the program can observe,
+        // whatever the address.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(address.cast()) }
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = (items, index);
+    let _ = address;
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 use glam::{Vec2, Vec3, Vec3A, Vec4};
 
 use crate::kernel::error::Error;
-use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES};
+use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES, PREFETCH_TRIANGLES};
 use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType, Target};
 use crate::kernel::options::Options;
@@ -160,6 +160,7 @@ impl Listing<'_> {
     ) -> Result<Report, Error> {
         let mut report = Report::default();
         for a in 0..self.triangle_count {
+            self.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
             let [i1, i2, i3] = self.mesh.checked(corners(a))?;
             if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
                 continue;
