@@ -379,30 +379,37 @@ mod tests {
         }
     }
 
+    /// Values that reach the listing's special cases: signed zeros, overflow, infinities, NaNs of
+    /// both signs, a subnormal.
+    const HOSTILE: [f32; 11] = [
+        0.0,
+        -0.0,
+        1.0,
+        -2.5,
+        3e38,
+        -3e38,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        -f32::NAN,
+        1e-45,
+    ];
+
+    /// A value in [-2, 2) with `percent` chance, else one of [`HOSTILE`].
+    fn hostile_or_ordinary(rng: &mut TestRng, percent: usize) -> f32 {
+        if rng.chance(percent) {
+            rng.unit() * 4.0 - 2.0
+        } else {
+            HOSTILE[rng.below(HOSTILE.len())]
+        }
+    }
+
     #[test]
     fn the_orientation_flag_follows_its_definition_on_hostile_values() {
-        let palette = [
-            0.0,
-            -0.0,
-            1.0,
-            -2.5,
-            3e38,
-            -3e38,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-            1e-45,
-        ];
         let mut rng = TestRng(0x0B1E);
         let mut seen = [0usize; 3];
         for _ in 0..20_000 {
-            let mut pick = || {
-                if rng.chance(70) {
-                    rng.unit() * 4.0 - 2.0
-                } else {
-                    palette[rng.below(palette.len())]
-                }
-            };
+            let mut pick = || hostile_or_ordinary(&mut rng, 70);
             let v: [[f32; 3]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
             let w: [[f32; 2]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
             let normals = [[0.0, 0.0, 1.0]; 3];
@@ -430,28 +437,9 @@ mod tests {
     /// branch (zero and non-finite edges, overflowing `sdir`, NaNs of both signs in every input).
     #[test]
     fn packed_and_strided_arrays_give_the_same_bits_on_every_simd_path() {
-        let palette = [
-            0.0,
-            -0.0,
-            1.0,
-            -2.5,
-            3e38,
-            -3e38,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-            -f32::NAN,
-            1e-45,
-        ];
         let mut rng = TestRng(0x9AC4);
         let vertex_count = 301;
-        let mut pick = || {
-            if rng.chance(92) {
-                rng.unit() * 4.0 - 2.0
-            } else {
-                palette[rng.below(palette.len())]
-            }
-        };
+        let mut pick = || hostile_or_ordinary(&mut rng, 92);
         let record: Vec<[f32; 9]> = (0..vertex_count).map(|_| core::array::from_fn(|_| pick())).collect();
         let positions: Vec<[f32; 3]> = record.iter().map(|r| [r[0], r[1], r[2]]).collect();
         let normals: Vec<[f32; 3]> = record.iter().map(|r| [r[3], r[4], r[5]]).collect();
