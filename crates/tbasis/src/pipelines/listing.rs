@@ -196,15 +196,13 @@ impl Listing<'_> {
     /// every input. A non-finite `s` or `t` makes `det` non-finite (a product with ±inf or NaN is
     /// ±inf or NaN, and so is a difference with one); with finite `s` and `t`, a non-finite `x1`
     /// makes `t2 x1` non-finite (NaN when `t2` is zero), hence `t2 x1 - t1 x2` (likewise `x2`, y
-    /// and z). A triangle with a zero `det` or a non-finite input takes
-    /// [`solve_with_special_values`]; the others hold no NaN but those their own arithmetic
-    /// makes.
+    /// and z). A triangle with a zero `det` or a non-finite input ends in [`special_triangle`];
+    /// the others hold no NaN but those their own arithmetic makes.
     #[inline(always)]
     fn solve(&self, i1: usize, i2: usize, i3: usize) -> (Vec3A, Vec3A, u8) {
         let positions = self.mesh.positions;
-        let [v1, v2, v3] = [i1, i2, i3].map(|v| positions.get(v));
+        let [p1, p2, p3] = [i1, i2, i3].map(|v| Vec3A::from_array(positions.get(v)));
         let [w1, w2, w3] = [i1, i2, i3].map(|v| Vec2::from_array(self.texcoords.get(v)));
-        let (p1, p2, p3) = (Vec3A::from_array(v1), Vec3A::from_array(v2), Vec3A::from_array(v3));
         let (e1, e2) = (p2 - p1, p3 - p1);
         let (s1, s2) = (w2.x - w1.x, w3.x - w1.x);
         let (t1, t2) = ((w2.y - w1.y) * self.v_sign, (w3.y - w1.y) * self.v_sign);
@@ -219,46 +217,32 @@ impl Listing<'_> {
         if det != 0.0 && finite {
             (sdir, tdir, side(det))
         } else {
-            let texcoords = [w1, w2, w3].map(|w| w.to_array());
-            solve_with_special_values([v1, v2, v3], texcoords, self.v_sign)
+            special_triangle(det, sdir, tdir, [e1, e2], [s1, s2, t1, t2])
         }
     }
 }
 
-/// [`Listing::solve`] for a triangle with a zero `det` or a non-finite value, compiled once, out
-/// of line, so that every SIMD path runs the same code on it. Its NaNs leave as the CPU's
-/// default NaN: then every NaN the sums and the second loop meet is that one, and no choice of
-/// operand order by the compiler (which differs between SIMD paths) can change a bit.
+/// The end of [`Listing::solve`] for a triangle with a zero `det` or a non-finite input: the
+/// orientation flag from its definition, and `sdir` and `tdir` with every NaN made the CPU's
+/// default NaN. Where two different NaNs meet, which one an operation passes on depends on the
+/// operand order, which the compiler may choose differently for each SIMD path. The common case's
+/// inputs are finite, so its NaNs are the default one already; with these and the normals'
+/// ([`canonical_nan`]) made the same, no path can differ from another in a bit. Out of line: it
+/// is rare, and the loop stays small.
 #[cold]
 #[inline(never)]
-fn solve_with_special_values(v: [[f32; 3]; 3], w: [[f32; 2]; 3], v_sign: f32) -> (Vec3A, Vec3A, u8) {
-    let edge = |k: usize| (v[1][k] - v[0][k], v[2][k] - v[0][k]);
-    let [(x1, x2), (y1, y2), (z1, z2)] = [0, 1, 2].map(edge);
-    let (s1, s2) = (w[1][0] - w[0][0], w[2][0] - w[0][0]);
-    let (t1, t2) = ((w[1][1] - w[0][1]) * v_sign, (w[2][1] - w[0][1]) * v_sign);
-
-    let det = s1 * t2 - s2 * t1;
-    let r = 1.0f32 / det;
-    let sdir = [
-        (t2 * x1 - t1 * x2) * r,
-        (t2 * y1 - t1 * y2) * r,
-        (t2 * z1 - t1 * z2) * r,
-    ];
-    let tdir = [
-        (s1 * x2 - s2 * x1) * r,
-        (s1 * y2 - s2 * y1) * r,
-        (s1 * z2 - s2 * z1) * r,
-    ];
-
-    let finite = [x1, x2, y1, y2, z1, z2, s1, s2, t1, t2].iter().all(|x| x.is_finite());
+fn special_triangle(
+    det: f32,
+    sdir: Vec3A,
+    tdir: Vec3A,
+    [e1, e2]: [Vec3A; 2],
+    uv_edges: [f32; 4],
+) -> (Vec3A, Vec3A, u8) {
+    let finite = e1.is_finite() && e2.is_finite() && uv_edges.iter().all(|x| x.is_finite());
     let orientation = if det == 0.0 || !finite { 0 } else { side(det) };
     let nan = default_nan();
-    let canonical = |x: f32| if x.is_nan() { nan } else { x };
-    (
-        Vec3A::from_array(sdir.map(canonical)),
-        Vec3A::from_array(tdir.map(canonical)),
-        orientation,
-    )
+    let [sdir, tdir] = [sdir, tdir].map(|v| Vec3A::from_array(canonical_nan(v.to_array(), nan)));
+    (sdir, tdir, orientation)
 }
 
 /// The NaN this CPU's arithmetic produces (`0 / 0`), not a constant the compiler would pick.
@@ -266,10 +250,10 @@ fn default_nan() -> f32 {
     core::hint::black_box(0.0f32) / core::hint::black_box(0.0f32)
 }
 
-/// `n` with every NaN component made `nan` (see [`solve_with_special_values`]).
+/// `v` with every NaN component made `nan` (see [`special_triangle`]).
 #[inline(always)]
-fn canonical_nan(n: Vec3, nan: f32) -> Vec3 {
-    Vec3::select(n.is_nan_mask(), Vec3::splat(nan), n)
+fn canonical_nan(v: [f32; 3], nan: f32) -> [f32; 3] {
+    v.map(|x| if x.is_nan() { nan } else { x })
 }
 
 /// The flag of a non-zero determinant's sign.
@@ -290,13 +274,13 @@ pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut Outpu
     let vertices = scratch.first..scratch.first + scratch.sums.len();
     let packed_normals = mesh.normals.packed().map(|normals| &normals[vertices.clone()]);
     let packed_tangents = output.as_deref_mut().and_then(OutputPart::packed_tangents);
-    // The normals' NaNs made the one the sums hold (see [`solve_with_special_values`]).
+    // Every NaN the sums hold is the default one: the normals' are made the same.
     let nan = default_nan();
     if let (Some(normals), Some(tangents)) = (packed_normals, packed_tangents) {
         return resolve_packed(normals, scratch.sums, tangents, nan);
     }
     for (a, sums) in vertices.zip(scratch.sums.iter_mut()) {
-        let n = canonical_nan(Vec3::from_array(mesh.normals.get(a)), nan);
+        let n = Vec3::from_array(canonical_nan(mesh.normals.get(a), nan));
         let (tangent, w) = frame(n, Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
         match output.as_deref_mut() {
             Some(output) => output.write(a, tangent, w, n),
@@ -309,6 +293,7 @@ pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut Outpu
 /// lanes (the same operations on every lane, so the same bits).
 #[inline(always)]
 fn resolve_packed(normals: &[[f32; 3]], sums: &[VertexSums], tangents: &mut [[f32; 4]], nan: f32) {
+    debug_assert!(normals.len() == sums.len() && tangents.len() >= sums.len());
     let (mut n, mut tan1, mut tan2) = ([[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3]);
     let mut frames = [[0.0; LANES]; 4];
     let batches = normals.chunks(LANES).zip(sums.chunks(LANES));
@@ -319,7 +304,8 @@ fn resolve_packed(normals: &[[f32; 3]], sums: &[VertexSums], tangents: &mut [[f3
             set_lane3(&mut tan2, i, sums.secondary);
         }
         for i in 0..lanes_in_use(normals.len()) {
-            let (t, w) = frame(canonical_nan(lane3(&n, i), nan), lane3(&tan1, i), lane3(&tan2, i));
+            let normal = Vec3::from_array(canonical_nan(lane3(&n, i).to_array(), nan));
+            let (t, w) = frame(normal, lane3(&tan1, i), lane3(&tan2, i));
             for (lanes, value) in frames.iter_mut().zip([t.x, t.y, t.z, w]) {
                 lanes[i] = value;
             }
@@ -359,18 +345,19 @@ mod tests {
     use crate::kernel::test_rng::TestRng;
     use crate::kernel::views::strided::StridedMut;
 
+    /// A triangle's edges as the listing names them: `[x1, x2, y1, y2, z1, z2]`, `[s1, s2, t1, t2]`.
+    fn listing_edges(v: [[f32; 3]; 3], w: [[f32; 2]; 3]) -> ([f32; 6], [f32; 4]) {
+        let pairs = |k: usize| [v[1][k] - v[0][k], v[2][k] - v[0][k]];
+        let [[x1, x2], [y1, y2], [z1, z2]] = [0, 1, 2].map(pairs);
+        let [[s1, s2], [t1, t2]] = [0, 1].map(|k| [w[1][k] - w[0][k], w[2][k] - w[0][k]]);
+        ([x1, x2, y1, y2, z1, z2], [s1, s2, t1, t2])
+    }
+
     /// The orientation flag by its definition: zero when the UV determinant is zero or any of the
     /// ten edge components is not finite, else the determinant's sign.
     fn defined_orientation(v: [[f32; 3]; 3], w: [[f32; 2]; 3]) -> u8 {
-        let edges = (0..3).flat_map(|k| [v[1][k] - v[0][k], v[2][k] - v[0][k]]);
-        let uv = (0..2).flat_map(|k| [w[1][k] - w[0][k], w[2][k] - w[0][k]]);
-        let finite = edges.chain(uv).all(f32::is_finite);
-        let (s1, s2, t1, t2) = (
-            w[1][0] - w[0][0],
-            w[2][0] - w[0][0],
-            w[1][1] - w[0][1],
-            w[2][1] - w[0][1],
-        );
+        let (edges, uv @ [s1, s2, t1, t2]) = listing_edges(v, w);
+        let finite = edges.iter().chain(&uv).all(|x| x.is_finite());
         let det = s1 * t2 - s2 * t1;
         match (finite && det != 0.0, det > 0.0) {
             (false, _) => 0,
@@ -379,9 +366,27 @@ mod tests {
         }
     }
 
-    /// Values that reach the listing's special cases: signed zeros, overflow, infinities, NaNs of
-    /// both signs, a subnormal.
-    const HOSTILE: [f32; 11] = [
+    /// The listing's `sdir` and `tdir`, written out as it computes them, one component at a time.
+    fn listing_directions(v: [[f32; 3]; 3], w: [[f32; 2]; 3]) -> [[f32; 3]; 2] {
+        let ([x1, x2, y1, y2, z1, z2], [s1, s2, t1, t2]) = listing_edges(v, w);
+        let r = 1.0f32 / (s1 * t2 - s2 * t1);
+        [
+            [
+                (t2 * x1 - t1 * x2) * r,
+                (t2 * y1 - t1 * y2) * r,
+                (t2 * z1 - t1 * z2) * r,
+            ],
+            [
+                (s1 * x2 - s2 * x1) * r,
+                (s1 * y2 - s2 * y1) * r,
+                (s1 * z2 - s2 * z1) * r,
+            ],
+        ]
+    }
+
+    /// Values that reach the listing's special cases: signed zeros, overflow, infinities, NaNs
+    /// of both signs and with payloads (a signalling one too), a subnormal.
+    const HOSTILE: [f32; 13] = [
         0.0,
         -0.0,
         1.0,
@@ -392,6 +397,8 @@ mod tests {
         f32::NEG_INFINITY,
         f32::NAN,
         -f32::NAN,
+        f32::from_bits(0xFFC0_1234),
+        f32::from_bits(0x7F80_0001),
         1e-45,
     ];
 
@@ -404,37 +411,61 @@ mod tests {
         }
     }
 
+    /// The SIMD paths this CPU has.
+    fn paths() -> impl Iterator<Item = Path> {
+        [Path::Baseline, Path::Avx2].into_iter().filter(|p| p.supported())
+    }
+
+    /// Every NaN in `values` is the CPU's default NaN.
+    fn only_default_nans(values: &[f32]) -> bool {
+        let nan = default_nan().to_bits();
+        values.iter().all(|x| !x.is_nan() || x.to_bits() == nan)
+    }
+
+    /// The per-triangle solve on every SIMD path: the listing's `sdir` and `tdir` (any NaN for
+    /// any NaN, and then the default one) and the orientation flag its definition gives.
     #[test]
-    fn the_orientation_flag_follows_its_definition_on_hostile_values() {
-        let mut rng = TestRng(0x0B1E);
-        let mut seen = [0usize; 3];
-        for _ in 0..20_000 {
-            let mut pick = || hostile_or_ordinary(&mut rng, 70);
-            let v: [[f32; 3]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
-            let w: [[f32; 2]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
-            let normals = [[0.0, 0.0, 1.0]; 3];
-            let mesh = Mesh::new(&v[..], &normals[..]).with_texcoords(&w[..]);
-            let listing = Listing {
-                mesh: &mesh,
-                texcoords: mesh.texcoords.unwrap(),
-                v_sign: 1.0,
-                triangle_count: 1,
-            };
-            let (_, _, orientation) = listing.solve(0, 1, 2);
-            assert_eq!(
-                orientation,
-                defined_orientation(v, w),
-                "positions {v:?}, texture coordinates {w:?}"
-            );
-            seen[usize::from(orientation / 2)] += 1;
+    fn the_solve_gives_the_listing_and_the_orientation_flag_its_definition() {
+        for path in paths() {
+            let mut rng = TestRng(0x0B1E);
+            let mut seen = [0usize; 3];
+            for _ in 0..20_000 {
+                let mut pick = || hostile_or_ordinary(&mut rng, 70);
+                let v: [[f32; 3]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
+                let w: [[f32; 2]; 3] = core::array::from_fn(|_| core::array::from_fn(|_| pick()));
+                let normals = [[0.0, 0.0, 1.0]; 3];
+                let mesh = Mesh::new(&v[..], &normals[..]).with_texcoords(&w[..]);
+                let listing = Listing {
+                    mesh: &mesh,
+                    texcoords: mesh.texcoords.unwrap(),
+                    v_sign: 1.0,
+                    triangle_count: 1,
+                };
+                PINNED.with(|p| p.set(Some(path)));
+                let (sdir, tdir, orientation) = simd::run(
+                    #[inline(always)]
+                    || listing.solve(0, 1, 2),
+                );
+                PINNED.with(|p| p.set(None));
+                let what = format!("{path:?}: positions {v:?}, texture coordinates {w:?}");
+                assert_eq!(orientation, defined_orientation(v, w), "{what}");
+                let got = [sdir, tdir].map(|v| v.to_array());
+                let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+                let want = listing_directions(v, w);
+                let agree = (0..2).all(|d| (0..3).all(|k| same(got[d][k], want[d][k])));
+                assert!(agree, "{what}: {got:?}, the listing gives {want:?}");
+                assert!(only_default_nans(got.as_flattened()), "{what}: {got:?}");
+                seen[usize::from(orientation / 2)] += 1;
+            }
+            // Every outcome occurs, each many times.
+            assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
         }
-        // Every outcome occurs, each many times.
-        assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
     }
 
     /// The listing's loops read packed arrays as slices and other layouts through strided views,
     /// and run compiled for each SIMD path: all give the same bits, on values that reach every
-    /// branch (zero and non-finite edges, overflowing `sdir`, NaNs of both signs in every input).
+    /// branch (zero and non-finite edges, overflowing `sdir`, NaNs of both signs and with payloads
+    /// in every input), and every NaN written is the CPU's default one.
     #[test]
     fn packed_and_strided_arrays_give_the_same_bits_on_every_simd_path() {
         let mut rng = TestRng(0x9AC4);
@@ -483,7 +514,7 @@ mod tests {
         };
         let bits = |frames: &[[f32; 4]]| frames.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>();
         let packed_tangents = run(Path::Baseline, &packed, true);
-        for path in [Path::Baseline, Path::Avx2].into_iter().filter(|p| p.supported()) {
+        for path in paths() {
             for (mesh, packed_output, layout) in [(&packed, true, "packed"), (&strided, false, "strided")] {
                 let tangents = run(path, mesh, packed_output);
                 assert_eq!(bits(&tangents), bits(&packed_tangents), "{layout} on {path:?}");
@@ -492,9 +523,6 @@ mod tests {
         // The values reach every branch: finite frames, and frames a non-finite sum spoils.
         assert!(packed_tangents.iter().any(|t| t.iter().all(|x| x.is_finite())));
         assert!(packed_tangents.iter().any(|t| t[0].is_nan()));
-        assert!(packed_tangents
-            .iter()
-            .flatten()
-            .any(|x| x.is_nan() && x.is_sign_negative()));
+        assert!(only_default_nans(packed_tangents.as_flattened()));
     }
 }

@@ -3,8 +3,11 @@
 //! Engines hand over interleaved vertex arrays and often want the tangent written into the same
 //! array the positions come from. A Rust reference over such memory could alias the output, so
 //! these views keep a raw base pointer and read or write each element with `read_unaligned` /
-//! `write_unaligned`: no reference to caller memory is ever formed. Every access is bounds-checked
-//! against the element count the view was built with, which is what makes `get`/`set` safe.
+//! `write_unaligned`. Every access is bounds-checked against the element count the view was built
+//! with, which is what makes `get`/`set` safe. The one reference formed to caller memory is the
+//! slice of a packed, aligned view ([`Strided::packed`], [`StridedMut::packed_mut`]), for as long
+//! as the view is borrowed; the calls reach the kernels only after refusing any output that
+//! shares a byte with an input (`Error::Overlap`), so no such slice aliases another.
 
 use core::marker::PhantomData;
 use core::mem::size_of;
@@ -251,8 +254,8 @@ impl<'a, T: Element> Strided<'a, T> {
     ///
     /// # Safety
     /// When `len > 0`, `base` must be valid for reads of `span_bytes(len, stride, size_of::<T>())`
-    /// bytes for `'a`, `stride >= size_of::<T>()`, and no element may be written through another
-    /// pointer while the view is read. Alignment is not required.
+    /// bytes, all in one allocation, for `'a`, `stride >= size_of::<T>()`, and no element may be
+    /// written through another pointer while the view is read. Alignment is not required.
     ///
     /// ```
     /// use tbasis::Strided;
@@ -436,8 +439,9 @@ impl<'a, T: Element> StridedMut<'a, T> {
     ///
     /// # Safety
     /// When `len > 0`, `base` must be valid for writes of `span_bytes(len, stride, size_of::<T>())`
-    /// bytes for `'a`, `stride >= size_of::<T>()`, and the element bytes must not be read or written
-    /// through another pointer while the view lives. Alignment is not required.
+    /// bytes, all in one allocation, for `'a`, `stride >= size_of::<T>()`, and the element bytes
+    /// must not be read or written through another pointer while the view lives. Alignment is not
+    /// required.
     ///
     /// ```
     /// use tbasis::StridedMut;
@@ -738,27 +742,22 @@ mod tests {
     /// them; the slice holds the view's elements.
     #[test]
     fn only_packed_aligned_views_are_slices() {
-        let floats: Vec<f32> = (0..13).map(|i| i as f32).collect();
-        let bytes: Vec<u8> = floats.iter().flat_map(|x| x.to_ne_bytes()).collect();
         let packed = Strided::<[f32; 3]>::from_slice(&[[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]][..])
             .packed()
             .map(<[_]>::to_vec);
         assert_eq!(packed, Some(vec![[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]]));
-        let aligned = floats.as_ptr() as usize % 4 == 0 && bytes.as_ptr() as usize % 4 == 0;
-        assert!(
-            aligned,
-            "Vec<f32> and a 52-byte Vec<u8> come 4-byte aligned from the allocator"
-        );
-        assert!(Strided::<[f32; 3]>::from_bytes(&bytes, 16, 3)
-            .unwrap()
-            .packed()
-            .is_none());
-        assert!(Strided::<[f32; 3]>::from_bytes(&bytes[1..], 12, 4)
-            .unwrap()
-            .packed()
-            .is_none());
-        let from_bytes = Strided::<[f32; 3]>::from_bytes(&bytes[4..], 12, 4).unwrap();
-        assert_eq!(from_bytes.packed().unwrap()[3], [10.0, 11.0, 12.0]);
+        let floats: Vec<f32> = (0..13).map(|i| i as f32).collect();
+        let base = floats.as_ptr().cast::<u8>();
+        // SAFETY: each view spans at most the 52 bytes of `floats`, which nothing writes.
+        let view = |offset: usize, stride: usize, len: usize| unsafe {
+            Strided::<[f32; 3]>::from_raw(base.add(offset), stride, len)
+        };
+        assert!(view(0, 16, 3).packed().is_none(), "a stride other than 12 bytes");
+        assert!(view(1, 12, 4).packed().is_none(), "a base off 4-byte alignment");
+        assert_eq!(view(4, 12, 4).packed().unwrap()[3], [10.0, 11.0, 12.0]);
+        // SAFETY: an empty view reads nothing, whatever its base.
+        let empty = unsafe { Strided::<[f32; 3]>::from_raw(core::ptr::null(), 12, 0) };
+        assert_eq!(empty.packed(), Some(&[][..]));
 
         let mut out = vec![0u8; 40];
         assert!(StridedMut::<[f32; 4]>::from_bytes(&mut out, 20, 2)
