@@ -328,7 +328,7 @@ impl<'a, T: Element> Strided<'a, T> {
     /// aligned for `T`: a kernel reads them as a plain array, in loops the compiler can vectorize.
     #[inline(always)]
     pub(crate) fn packed(&self) -> Option<&[T]> {
-        if self.stride != size_of::<T>() || !self.base.cast::<T>().is_aligned() {
+        if !sits_packed::<T>(self.base, self.stride) {
             return None;
         }
         if self.len == 0 {
@@ -512,7 +512,7 @@ impl<'a, T: Element> StridedMut<'a, T> {
     /// [`Strided::packed`]).
     #[inline(always)]
     pub(crate) fn packed_mut(&mut self) -> Option<&mut [T]> {
-        if self.stride != size_of::<T>() || !self.base.cast::<T>().is_aligned() {
+        if !sits_packed::<T>(self.base, self.stride) {
             return None;
         }
         if self.len == 0 {
@@ -660,6 +660,13 @@ macro_rules! glam_views {
 }
 
 glam_views!(glam::Vec2 => [f32; 2], glam::Vec3 => [f32; 3], glam::Vec3A => [f32; 3], glam::Vec4 => [f32; 4]);
+
+/// Whether elements `stride` bytes apart from `base` sit packed (`stride` is `T`'s size) at an
+/// address aligned for `T`: then a view's elements are a slice.
+#[inline(always)]
+fn sits_packed<T>(base: *const u8, stride: usize) -> bool {
+    stride == size_of::<T>() && base.cast::<T>().is_aligned()
+}
 
 #[cfg(test)]
 mod tests {
