@@ -41,7 +41,7 @@ pub(crate) struct Memory<'a> {
 }
 
 /// True when the last run of mikktspace.c's edge sort holds at most the two sides of one edge.
-/// `welded` are the corners' welded vertices, `class` each vertex's, `source` a vertex of each
+/// `welded` are the corners' welded vertices, `source` a vertex of each
 /// welded vertex, `ids` the welded vertices of each good triangle (those mikktspace.c pairs the
 /// edges of). False when it does not, or when finding out would cost a large part of the full
 /// weld.
@@ -49,7 +49,6 @@ pub(crate) fn is_trivial(
     attributes: &Attributes,
     threads: u32,
     welded: &[u32],
-    class: &[u32],
     source: &[u32],
     ids: &[[u32; 3]],
     memory: Memory,
@@ -73,7 +72,6 @@ pub(crate) fn is_trivial(
         attributes,
         threads,
         welded,
-        class,
         source,
         ids,
         hi,
@@ -103,7 +101,6 @@ struct Search<'s> {
     attributes: &'s Attributes<'s>,
     threads: u32,
     welded: &'s [u32],
-    class: &'s [u32],
     source: &'s [u32],
     ids: &'s [[u32; 3]],
     hi: &'s [u32],
@@ -124,13 +121,12 @@ impl Search<'_> {
         wanted: &(dyn Fn(usize) -> bool + Sync),
         scratch: &'w mut WeldScratch,
     ) -> Option<&'w [[u32; 3]]> {
-        let (class, source, welded) = (self.class, self.source, self.welded);
         let wanted = Wanted {
-            vertex: &|v: u32| class[v as usize] != NONE && wanted(class[v as usize] as usize),
+            welded: wanted,
             corner_limit: self.corner_limit,
         };
-        let vertex_of = |c: usize| source[welded[c] as usize];
-        weld::representatives(self.attributes, self.threads, welded.len(), &vertex_of, wanted, scratch)
+        let welded_vertices = (self.welded, &self.source[..self.hi.len()]);
+        weld::representatives(self.attributes, self.threads, welded_vertices, wanted, scratch)
     }
 
     /// The bound `lowest` raised by the exact indices of the last good triangles' vertices
@@ -166,18 +162,19 @@ impl Search<'_> {
                 lo[id] = self.attributes.value_of(first as usize);
             }
         }
+        // One pass: the largest smaller index so far, how many edges have it, and the larger
+        // index of the first two.
         let index = &*lo;
-        let both = |&(a, b): &(usize, usize)| candidate(a) && candidate(b);
-        let last = edges(self.ids)
-            .filter(both)
-            .map(|(a, b)| index[a].min(index[b]))
-            .max()
-            .unwrap_or(0);
-        let mut run = edges(self.ids)
-            .filter(|e| both(e) && index[e.0].min(index[e.1]) == last)
-            .map(|(a, b)| index[a].max(index[b]));
-        let first = run.next();
-        let second = run.next();
-        Some(run.next().is_none() && (second.is_none() || second == first))
+        let (mut last, mut count, mut larger) = (0, 0usize, [0; 2]);
+        for (a, b) in edges(self.ids).filter(|&(a, b)| candidate(a) && candidate(b)) {
+            let (small, large) = (index[a].min(index[b]), index[a].max(index[b]));
+            if count == 0 || small > last {
+                (last, count, larger) = (small, 1, [large, 0]);
+            } else if small == last {
+                larger[1] = large;
+                count += 1;
+            }
+        }
+        Some(count < 2 || (count == 2 && larger[0] == larger[1]))
     }
 }

@@ -621,9 +621,8 @@ fn settle_last_run(
         hi: &mut b.table[..welded_count],
         weld: WeldScratch::take(&mut phase, vertex_count, corner_count)?,
     };
-    let class = &b.slots[..vertex_count];
     let ids = &b.ids[..good];
-    if last_run::is_trivial(attributes, threads, b.welded, class, b.source, ids, memory) {
+    if last_run::is_trivial(attributes, threads, b.welded, b.source, ids, memory) {
         return Ok(WeldPath::ByValue);
     }
     for (c, slot) in b.welded.iter_mut().enumerate() {

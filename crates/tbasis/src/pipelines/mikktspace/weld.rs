@@ -77,8 +77,8 @@ pub(crate) fn weld(
 ) -> usize {
     let corner_count = corners.len();
     let vertices = &*corners;
-    let filled = split_cells(attributes, threads, corner_count, &|c| vertices[c], None, &mut scratch);
-    debug_assert_eq!(filled, Some(corner_count));
+    let filled = split_cells(attributes, threads, corner_count, &|c| vertices[c], &mut scratch);
+    debug_assert_eq!(filled, corner_count);
     let WeldScratch {
         hashes,
         entries,
@@ -122,51 +122,105 @@ pub(crate) fn weld(
     count as usize
 }
 
-/// Cells of the grid holding a wanted vertex, and the most corners they may hold together.
+/// Cells of the grid holding a wanted welded vertex, and the most corners they may hold together.
 pub(crate) struct Wanted<'w> {
-    pub vertex: &'w (dyn Fn(u32) -> bool + Sync),
+    pub welded: &'w (dyn Fn(usize) -> bool + Sync),
     pub corner_limit: usize,
 }
 
-/// mikktspace.c's representative corner of each of the `corner_count` corners (corner `c` of
-/// vertex `vertex_of(c)`) in the grid cells holding a vertex `wanted` names, by replaying
-/// `MergeVertsFast` on those cells alone: cells are welded independently. Returns
-/// `[corner, vertex or NONE, representative]` for each. `None` when those cells hold more than
-/// `wanted.corner_limit` corners (nothing replayed).
+/// mikktspace.c's representative corner of each corner in the grid cells holding a welded vertex
+/// `wanted` names, by replaying `MergeVertsFast` on those cells alone: cells are welded
+/// independently. `welded` is every corner's welded vertex from the weld by value
+/// ([`super::value_weld`]) and `source` a vertex of each. Returns `[corner, vertex,
+/// representative]` for each such corner, the vertex being its welded vertex's source; `None` when
+/// those cells hold more than `wanted.corner_limit` corners (nothing replayed).
+///
+/// The weld by value found no `NaN` and a welded vertex's corners have identical bits, so the box
+/// and the cells come from the welded vertices rather than from every corner. A cell is a
+/// function of the position. The box's strict comparisons keep, of equal values, the first one
+/// met. The welded vertices are numbered in order of first use, so the first of them with a
+/// given coordinate is the welded vertex of the first corner with it, and has that corner's bits.
 pub(crate) fn representatives<'s>(
     attributes: &Attributes,
     threads: u32,
-    corner_count: usize,
-    vertex_of: &(impl Fn(usize) -> u32 + Sync),
+    (welded, source): (&[u32], &[u32]),
     wanted: Wanted,
     scratch: &'s mut WeldScratch,
 ) -> Option<&'s [[u32; 3]]> {
-    let filled = split_cells(attributes, threads, corner_count, vertex_of, Some(wanted), scratch)?;
-    Some(&scratch.entries[..filled])
-}
-
-/// Steps 1 to 3 of the weld: the grid, then each cell's corners gathered in corner order and split
-/// and welded (`MergeVertsFast`), for every cell or those `wanted` selects. Leaves, in
-/// `scratch.entries[..n]`, (corner, vertex or [`NONE`], representative corner) of the `n` corners
-/// those cells hold, and returns `n`; `None` past `wanted`'s corner limit.
-fn split_cells(
-    attributes: &Attributes,
-    threads: u32,
-    corner_count: usize,
-    vertex_of: &(impl Fn(usize) -> u32 + Sync),
-    wanted: Option<Wanted>,
-    scratch: &mut WeldScratch,
-) -> Option<usize> {
+    let position = |w: usize| attributes.position(source[w]);
+    let seed = attributes.index_zero.unwrap_or_else(|| position(welded[0] as usize));
+    let (min, max) = (0..source.len())
+        .map(position)
+        .fold((seed, seed), |(mut min, mut max), p| {
+            for axis in 0..3 {
+                if min[axis] > p[axis] {
+                    min[axis] = p[axis];
+                } else if max[axis] < p[axis] {
+                    max[axis] = p[axis];
+                }
+            }
+            (min, max)
+        });
+    let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
+    let cells = &mut scratch.cells[..source.len()];
+    let mut selected = [false; GRID_CELLS];
+    for (w, cell) in cells.iter_mut().enumerate() {
+        let k = grid_cell(min[axis], max[axis], position(w)[axis]);
+        *cell = k as u32;
+        selected[k] |= (wanted.welded)(w);
+    }
+    // Only the selected cells' vertices are compared.
+    for (w, &cell) in cells.iter().enumerate() {
+        if selected[cell as usize] {
+            let v = source[w];
+            scratch.hashes[v as usize] = hash_of(&attributes.key(v).map(canonical_bits));
+        }
+    }
     let WeldScratch {
-        cells,
         hashes,
         starts,
         cursors,
         positions,
         entries,
         stack,
+        representative,
         ..
     } = scratch;
+    let cells = &*cells;
+    let locate = |c: usize| {
+        let w = welded[c] as usize;
+        (cells[w], source[w])
+    };
+    let memory = CellMemory {
+        hashes,
+        starts,
+        cursors,
+        positions,
+        entries: &mut entries[..],
+        stack,
+        listed: Some(representative),
+    };
+    let filled = weld_cells(
+        attributes,
+        threads,
+        welded.len(),
+        &locate,
+        (&selected, wanted.corner_limit),
+        memory,
+    )?;
+    Some(&entries[..filled])
+}
+
+/// Steps 1 to 3 of the weld on every cell: the grid, then each cell's corners gathered in corner
+/// order and split and welded (`MergeVertsFast`). Leaves, in `scratch.entries`, (corner, vertex or
+/// [`NONE`], representative corner) of every corner, and returns the corner count.
+fn split_cells(
+    attributes: &Attributes,
+    threads: u32,
+    corner_count: usize,
+    vertex_of: &(impl Fn(usize) -> u32 + Sync),
+    scratch: &mut WeldScratch,
+) -> usize {
     let position = |v: u32| attributes.position(v);
 
     // 1. The bounding box.
@@ -174,8 +228,8 @@ fn split_cells(
     let (min, max) = bounding_box(threads, corner_count, seed, &|c| position(vertex_of(c)));
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
 
-    // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads); the cells
-    //    wanted; how many corners each of them holds.
+    // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads).
+    let WeldScratch { cells, hashes, .. } = scratch;
     let vertex_ranges = parallel::item_ranges(threads, cells.len(), 1);
     let ends = vertex_ranges.ends();
     let parts = parallel::split(cells, ends, 1).zip(parallel::split(hashes, ends, 1));
@@ -187,36 +241,104 @@ fn split_cells(
             *hash = hash_of(&key.map(canonical_bits));
         }
     });
-    let (cells, hashes) = (&**cells, &**hashes);
-    let cell_of = |v: u32| (cells[v as usize] & !UNEQUAL) as usize;
-    let mut selected = [wanted.is_none(); GRID_CELLS];
-    if let Some(wanted) = &wanted {
-        for v in (0..cells.len() as u32).filter(|&v| (wanted.vertex)(v)) {
-            selected[cell_of(v)] = true;
+    let WeldScratch {
+        cells,
+        hashes,
+        starts,
+        cursors,
+        positions,
+        entries,
+        stack,
+        ..
+    } = scratch;
+    let cells = &**cells;
+    let locate = |c: usize| {
+        let v = vertex_of(c);
+        (cells[v as usize], v)
+    };
+    let memory = CellMemory {
+        hashes,
+        starts,
+        cursors,
+        positions,
+        entries,
+        stack,
+        listed: None,
+    };
+    weld_cells(
+        attributes,
+        threads,
+        corner_count,
+        &locate,
+        (&[true; GRID_CELLS], usize::MAX),
+        memory,
+    )
+    .unwrap_or(0)
+}
+
+/// What [`weld_cells`] works in: [`WeldScratch`] but the cells.
+struct CellMemory<'m> {
+    hashes: &'m [u32],
+    starts: &'m mut [u32],
+    cursors: &'m mut [u32],
+    positions: &'m mut [Vec3],
+    entries: &'m mut [[u32; 3]],
+    stack: &'m mut [[u32; 2]],
+    /// Room for the selected corners, one word per corner, when few cells are selected: the
+    /// workers then gather from that list rather than from every corner.
+    listed: Option<&'m mut [u32]>,
+}
+
+/// Step 3 of the weld: each selected cell's corners gathered in corner order, then split and
+/// welded (`MergeVertsFast`), ranges of cells on separate threads. `locate(c)` gives corner `c`'s
+/// cell (or'd with [`UNEQUAL`]) and vertex. Leaves (corner, vertex or [`NONE`], representative
+/// corner) of the `n` corners those cells hold in `entries[..n]` and returns `n`; `None` when `n`
+/// passes `corner_limit` (nothing welded).
+fn weld_cells(
+    attributes: &Attributes,
+    threads: u32,
+    corner_count: usize,
+    locate: &(dyn Fn(usize) -> (u32, u32) + Sync),
+    (selected, corner_limit): (&[bool; GRID_CELLS], usize),
+    memory: CellMemory,
+) -> Option<usize> {
+    let CellMemory {
+        hashes,
+        starts,
+        cursors,
+        positions,
+        entries,
+        stack,
+        listed,
+    } = memory;
+    starts.fill(0);
+    let mut list = listed.map(|list| (list, 0));
+    for c in 0..corner_count {
+        let k = (locate(c).0 & !UNEQUAL) as usize;
+        starts[k + 1] += u32::from(selected[k]);
+        if let Some((list, count)) = list.as_mut().filter(|_| selected[k]) {
+            list[*count] = c as u32;
+            *count += 1;
         }
     }
-    starts.fill(0);
-    for c in 0..corner_count {
-        let k = cell_of(vertex_of(c));
-        starts[k + 1] += u32::from(selected[k]);
-    }
+    let list = list.map(|(list, count)| &list[..count]);
     for k in 0..GRID_CELLS {
         starts[k + 1] += starts[k];
     }
     let filled = starts[GRID_CELLS] as usize;
-    if wanted.is_some_and(|w| filled > w.corner_limit) {
+    if filled > corner_limit {
         return None;
     }
     cursors.copy_from_slice(&starts[..GRID_CELLS]);
 
-    // 3. Ranges of cells on separate threads: each worker gathers its cells' corners (in corner
-    //    order within a cell), then splits and welds every cell (`MergeVertsFast`).
+    // Each worker gathers its cells' corners (in corner order within a cell), then splits and
+    // welds every cell.
     let cell_ranges = cell_ranges(threads, starts);
     let ends = cell_ranges.ends();
     let bounds = Ranges::from_ends(ends.iter().map(|&cell| starts[cell] as usize));
     let bounds = bounds.ends();
     let first_cells = core::iter::once(0).chain(ends.iter().copied());
-    let starts = &**starts;
+    let starts = &*starts;
     let parts = parallel::split(&mut positions[..filled], bounds, 1)
         .zip(parallel::split(&mut entries[..filled], bounds, 1))
         .zip(parallel::split(&mut stack[..filled], bounds, 1))
@@ -227,9 +349,12 @@ fn split_cells(
         parts,
         |first, ((((positions, entries), stack), cursors), (first_cell, end_cell))| {
             let owned = first_cell..end_cell;
-            for c in 0..corner_count {
-                let v = vertex_of(c);
-                let cell = cells[v as usize];
+            let corners: &mut dyn Iterator<Item = usize> = match list {
+                Some(list) => &mut list.iter().map(|&c| c as usize),
+                None => &mut (0..corner_count),
+            };
+            for c in corners {
+                let (cell, v) = locate(c);
                 let k = (cell & !UNEQUAL) as usize;
                 if !owned.contains(&k) || !selected[k] {
                     continue;
@@ -237,7 +362,7 @@ fn split_cells(
                 let cursor = &mut cursors[k - first_cell];
                 let at = *cursor as usize - first;
                 *cursor += 1;
-                positions[at] = position(v);
+                positions[at] = attributes.position(v);
                 let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
                 entries[at] = [c as u32, vertex, c as u32];
             }

@@ -142,7 +142,7 @@ fn welding_by_value_finds_the_replayed_weld_or_declines() {
 /// is good.
 fn last_run_outcome(case: &Case, attributes: &Attributes) -> Option<(bool, bool, Vec<u32>)> {
     let v = case.positions.len();
-    let (welded, class, source) = by_value_weld(attributes, &case.indices)?;
+    let (welded, _, source) = by_value_weld(attributes, &case.indices)?;
     let count = source.len();
     let position = |id: u32| attributes.position(source[id as usize]);
     let ids: Vec<[u32; 3]> = welded
@@ -175,7 +175,7 @@ fn last_run_outcome(case: &Case, attributes: &Attributes) -> Option<(bool, bool,
         hi: &mut hi,
         weld,
     };
-    let said = last_run::is_trivial(attributes, 1, &welded, &class, &source, &ids, memory);
+    let said = last_run::is_trivial(attributes, 1, &welded, &source, &ids, memory);
     Some((said, truly_trivial, run))
 }
 
