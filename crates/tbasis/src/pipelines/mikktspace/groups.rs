@@ -27,23 +27,24 @@ pub(crate) fn stack_words(triangles: usize) -> usize {
     2 * triangles + 2
 }
 
-/// Builds the groups and writes `assigned[g][k]`, the group of corner `k` of good triangle `g`
-/// ([`NONE`] when it has none). `stack` needs [`stack_words`] of `ids.len()`. Returns the group
-/// count.
+/// Builds the groups at the welded vertices `at` selects (a group keeps to one welded vertex, so
+/// those at the others are left out without changing these) and writes `assigned[g][k]`, the
+/// group of corner `k` of good triangle `g` ([`NONE`] when it has none). `stack` needs
+/// [`stack_words`] of `ids.len()`. Returns the group count.
 pub(crate) fn build(
     ids: &[[u32; 3]],
     neighbors: &[[u32; 3]],
     flags: &mut [u8],
     assigned: &mut [[u32; 3]],
-    groups: &mut Groups,
-    stack: &mut [u32],
+    (groups, stack): (&mut Groups, &mut [u32]),
+    at: impl Fn(u32) -> bool,
 ) -> usize {
     assigned.fill([NONE; 3]);
     let mut count = 0usize;
     let mut filled = 0usize;
     for f in 0..ids.len() {
         for i in 0..3 {
-            if flags[f] & GROUP_WITH_ANY != 0 || assigned[f][i] != NONE {
+            if flags[f] & GROUP_WITH_ANY != 0 || assigned[f][i] != NONE || !at(ids[f][i]) {
                 continue;
             }
             let group = count as u32;
@@ -120,7 +121,14 @@ mod tests {
                 orientation: &mut orientation,
             };
             let mut stack = vec![0; stack_words(n)];
-            let count = build(&ids, &neighbors, &mut flags, &mut assigned, &mut groups, &mut stack);
+            let count = build(
+                &ids,
+                &neighbors,
+                &mut flags,
+                &mut assigned,
+                (&mut groups, &mut stack),
+                |_| true,
+            );
             // The centre's group, then each ring vertex's two corners, in one group each.
             assert_eq!(count, 1 + n, "{n} triangles");
             let mut centre: Vec<u32> = corners[..n].to_vec();

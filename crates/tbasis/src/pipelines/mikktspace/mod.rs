@@ -9,6 +9,7 @@
 #![forbid(unsafe_code)]
 
 mod attributes;
+mod components;
 mod corner_terms;
 mod faces;
 pub(crate) mod faces_interface;
@@ -46,6 +47,14 @@ use crate::kernel::{frame, parallel};
 
 /// "No index": no neighbour, no group, no corner yet.
 pub(crate) const NONE: u32 = u32::MAX;
+
+/// The routes a call took (the tests count which meshes take each).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Routes {
+    pub weld: WeldPath,
+    /// The groups as components ([`components`]), or `None`: by mikktspace.c's search.
+    pub groups: Option<components::Settled>,
+}
 
 /// How a call reproduced mikktspace.c's weld (the tests count which meshes take each way).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -250,14 +259,18 @@ fn compute<'a>(
     options: &Options,
     bytes: &'a mut [u8],
     report: &mut Report,
-) -> Result<(Buffers<'a>, WeldPath), Error> {
+) -> Result<(Buffers<'a>, Routes), Error> {
     if mesh.vertex_count() == 0 {
         // No scratch was asked for: any index is out of range, or there is nothing to do.
         if mesh.corner_count() > 0 {
             return Err(mesh.index_error());
         }
         *report = Report::default();
-        return Ok((Buffers::take(&mut Arena::Count(0), 0, 0)?, WeldPath::ByValue));
+        let routes = Routes {
+            weld: WeldPath::ByValue,
+            groups: None,
+        };
+        return Ok((Buffers::take(&mut Arena::Count(0), 0, 0)?, routes));
     }
     let mut buffers = Buffers::take(&mut Arena::Carve(bytes), mesh.vertex_count(), mesh.corner_count())?;
     let (vertex_count, corner_count) = (mesh.vertex_count(), mesh.corner_count());
@@ -304,9 +317,12 @@ fn compute<'a>(
         let (spaces, corners) = ((&mut *tangents, &mut *orientation), |c: usize| c);
         copy_to_degenerate(&mut buffers, &solved, spaces, corners, |_| false);
         (buffers.tangents, buffers.orientation) = (tangents, orientation);
-        solved.path
+        solved.routes
     } else {
-        WeldPath::ByValue
+        Routes {
+            weld: WeldPath::ByValue,
+            groups: None,
+        }
     };
     // 11. Policies other than LEGACY replace what no frame can be; then per-vertex counts.
     if options.degenerate_policy != DegeneratePolicy::Legacy {
@@ -327,10 +343,10 @@ pub(crate) struct FaceExtras<'a> {
     pub threshold: f32,
 }
 
-/// How [`solve`] ended: the weld it took, the good triangles (the first of `order`) and the
+/// How [`solve`] ended: the routes it took, the good triangles (the first of `order`) and the
 /// welded vertices.
 struct Solved {
-    path: WeldPath,
+    routes: Routes,
     good: usize,
     welded_count: usize,
 }
@@ -464,8 +480,53 @@ fn solve<S: tspace::Space>(
             corner_terms::compute(packed, &ids[range], derivatives, CornerTerms { s, t, angle });
         });
     };
+    if let (None, Some(tangents)) = (&extras, S::tangents(&mut *spaces)) {
+        // 7 to 9 at once ([`components`]): at the welded vertices of GROUP_WITH_ANY triangles the
+        // groups by mikktspace.c's search, elsewhere as components.
+        weigh(threads);
+        let near = &mut b.table[..welded_count];
+        near.fill(0);
+        for (corners, &flags) in ids.iter().zip(&b.flags[..good]) {
+            if flags & GROUP_WITH_ANY != 0 {
+                corners.iter().for_each(|&id| near[id as usize] = 1);
+            }
+        }
+        let near = near.contains(&1).then_some(&*near);
+        let (neighbors, assigned) = (&b.neighbors[..good], &mut b.assigned[..good]);
+        let searched = match near {
+            Some(near) => {
+                let memory = (&mut groups, &mut *stack);
+                groups::build(ids, neighbors, &mut b.flags[..good], assigned, memory, |id| {
+                    near[id as usize] != 0
+                })
+            }
+            None => 0,
+        };
+        let inputs = Inputs {
+            flags: &b.flags[..good],
+            order,
+            s,
+            t,
+            angle,
+            magnitudes: &[],
+            threshold: tspace::threshold_cosine(180.0),
+            face_of: None,
+        };
+        let parent = assigned.as_flattened_mut();
+        let outputs = (tangents, &mut *b.orientation);
+        let adjacency = components::Adjacency { ids, neighbors, near };
+        let settled = components::evaluate(&inputs, adjacency, parent, outputs, (&groups, searched))?;
+        return Ok(Solved {
+            routes: Routes {
+                weld: path,
+                groups: Some(settled),
+            },
+            good,
+            welded_count,
+        });
+    }
     let (neighbors, flags, assigned) = (&b.neighbors[..good], &mut b.flags[..good], &mut b.assigned[..good]);
-    let mut group = || groups::build(ids, neighbors, flags, assigned, &mut groups, &mut *stack);
+    let mut group = || groups::build(ids, neighbors, flags, assigned, (&mut groups, &mut *stack), |_| true);
     let group_count = if ranges.ends().len() > 1 {
         parallel::join(|| weigh(threads - 1), group).1
     } else {
@@ -547,7 +608,10 @@ fn solve<S: tspace::Space>(
         b.orientation[corner as usize] = preserving;
     }
     Ok(Solved {
-        path,
+        routes: Routes {
+            weld: path,
+            groups: None,
+        },
         good,
         welded_count,
     })

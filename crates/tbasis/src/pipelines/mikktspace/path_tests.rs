@@ -1,51 +1,58 @@
-//! Which way each corpus mesh's weld takes ([`super::WeldPath`]), so that a fast path no mesh
-//! uses shows up.
+//! Which way each corpus mesh's weld and groups take ([`super::Routes`]), so that a fast path no
+//! mesh uses shows up.
 #![forbid(unsafe_code)]
 
-use super::{compute, scratch_bytes, WeldPath};
+use super::{components, compute, scratch_bytes, Routes, WeldPath};
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::Options;
 use crate::kernel::report::Report;
 use tbasis_test_support::{load, needs, scenes};
 
-/// The weld `compute` took on one mesh.
-fn path_of(
+/// The routes `compute` took on one mesh.
+fn routes_of(
     positions: &[[f32; 3]],
     normals: &[[f32; 3]],
     texcoords: &[[f32; 2]],
     indices: &[u32],
     flip_v: bool,
-) -> WeldPath {
+) -> Routes {
     let mesh = Mesh::new(positions, normals)
         .with_texcoords(texcoords)
         .with_indices(indices);
     let options = Options::mikktspace().with_flip_v(flip_v);
     let mut bytes = vec![0u8; scratch_bytes(positions.len(), indices.len()).expect("a scratch size")];
-    let (_, path) = compute(&mesh, &options, &mut bytes, &mut Report::default()).expect("a result");
-    path
+    let (_, routes) = compute(&mesh, &options, &mut bytes, &mut Report::default()).expect("a result");
+    routes
 }
 
 #[test]
-fn the_benchmark_torus_welds_by_value() {
+fn the_benchmark_torus_welds_by_value_and_groups_by_components() {
     let torus = scenes::build(&scenes::SceneSpec::torus(20_000));
-    let path = path_of(
+    let routes = routes_of(
         &torus.positions,
         &torus.normals,
         &torus.texcoords,
         &torus.indices,
         false,
     );
-    assert_eq!(path, WeldPath::ByValue);
+    assert_eq!(routes.weld, WeldPath::ByValue);
+    let settled = routes.groups.expect("the groups as components");
+    assert!(
+        settled.components > 0 && settled.compared == 0 && settled.searched == 0,
+        "{settled:?}"
+    );
 }
 
 #[test]
-fn every_corpus_mesh_reports_the_weld_it_takes() {
+fn every_corpus_mesh_reports_the_routes_it_takes() {
     if !needs::CORPUS.found_or_skip() {
         return;
     }
     let dir = load::corpus_dir().expect("the corpus");
-    // Corners per way: by value, replayed for the attributes, replayed for the last run.
+    // Corners per way: by value, replayed for the attributes, replayed for the last run. Groups
+    // per way: as components, of which compared pairwise, and by the search.
     let mut corners = [0usize; 3];
+    let mut groups = components::Settled::default();
     let mut lines = Vec::new();
     for row in load::read_manifest(&dir).expect("MANIFEST.tsv") {
         // Debug builds leave out the largest meshes, as the corpus tests do.
@@ -58,14 +65,26 @@ fn every_corpus_mesh_reports_the_weld_it_takes() {
                 continue;
             };
             let (positions, normals, indices) = (&primitive.positions, &primitive.normals, &primitive.indices);
-            let path = path_of(positions, normals, texcoords, indices, primitive.v_down);
-            let way = match path {
+            let routes = routes_of(positions, normals, texcoords, indices, primitive.v_down);
+            let way = match routes.weld {
                 WeldPath::ByValue => 0,
                 WeldPath::ReplayedForAttributes => 1,
                 WeldPath::ReplayedForLastRun => 2,
             };
             corners[way] += indices.len();
-            lines.push(format!("{} #{p}: {} corners, {path:?}", row.path, indices.len()));
+            let settled = routes.groups.expect("triangles take the components route");
+            groups.components += settled.components;
+            groups.compared += settled.compared;
+            groups.searched += settled.searched;
+            lines.push(format!(
+                "{} #{p}: {} corners, {:?}, groups: {} as components ({} compared), {} by search",
+                row.path,
+                indices.len(),
+                routes.weld,
+                settled.components,
+                settled.compared,
+                settled.searched
+            ));
         }
     }
     eprintln!("{}", lines.join("\n"));
@@ -74,6 +93,10 @@ fn every_corpus_mesh_reports_the_weld_it_takes() {
         "corners welded by value: {by_value}; replayed for their attributes: {for_attributes}; \
          replayed for the last run: {for_last_run}"
     );
+    eprintln!(
+        "groups as components: {}, of which compared pairwise: {}; by search: {}",
+        groups.components, groups.compared, groups.searched
+    );
     // Each way is taken somewhere: none goes untested by the corpus.
     assert!(by_value > 0, "no corpus mesh welds by value");
     assert!(
@@ -81,4 +104,7 @@ fn every_corpus_mesh_reports_the_weld_it_takes() {
         "no corpus mesh has attributes the weld by value declines"
     );
     assert!(for_last_run > 0, "no corpus mesh needs the last run replayed");
+    assert!(groups.components > 0, "no corpus mesh groups as components");
+    assert!(groups.compared > 0, "no corpus component needs the pairwise comparison");
+    assert!(groups.searched > 0, "no corpus mesh needs the search for its groups");
 }

@@ -49,6 +49,8 @@ pub(crate) trait Space: Copy + Send + Sync {
     fn add(sum: &mut Self::Sum, inputs: &Inputs, c: usize);
     /// The sub-group's space from its sum.
     fn finish(sum: Self::Sum) -> Self;
+    /// The spaces as tangents alone, when they are nothing more.
+    fn tangents(spaces: &mut [Self]) -> Option<&mut [Vec3]>;
 }
 
 impl Space for Vec3 {
@@ -60,6 +62,9 @@ impl Space for Vec3 {
     #[inline(always)]
     fn finish(sum: Vec3) -> Vec3 {
         normalize_if_not_zero(sum)
+    }
+    fn tangents(spaces: &mut [Vec3]) -> Option<&mut [Vec3]> {
+        Some(spaces)
     }
 }
 
@@ -123,6 +128,9 @@ impl Space for Full {
             mag_s,
             mag_t,
         }
+    }
+    fn tangents(_: &mut [Full]) -> Option<&mut [Vec3]> {
+        None
     }
 }
 
