@@ -223,8 +223,7 @@ fn expected(method: u32, policy: u32, shuffled: bool, threads: u32) -> (usize, u
         (1, _, _) => (memory, 0),
         (_, false, true) if policy != TBASIS_DEGENERATE_LEGACY => (memory + 10, 0),
         (_, false, _) => (memory, 0),
-        (_, true, false) if policy == TBASIS_DEGENERATE_REJECT => (1, 0),
-        (_, true, false) => (9, 0),
+        (_, true, false) => (1, 0),
         (_, true, true) => (8, 7),
     }
 }

@@ -58,7 +58,7 @@ pub(crate) fn evaluate(
     adjacency: Adjacency,
     parent: &mut [u32],
     (spaces, orientation): (&mut [Vec3], &mut [u8]),
-    (groups, searched): (&Groups, usize),
+    (groups, searched): (&mut Groups, usize),
 ) -> Result<Settled, Error> {
     let Adjacency { ids, neighbors, near } = adjacency;
     let slot = |c: usize| 3 * inputs.order[c / 3] as usize + c % 3;
@@ -100,7 +100,6 @@ pub(crate) fn evaluate(
         if root == c {
             components += 1;
             spaces[slot(c)] = [0.0; 3];
-            let unit = |d: Vec3| d.iter().all(|x| x.is_finite()) && (dot(d, d) - 1.0).abs() <= 1e-4;
             orientation[slot(c)] = if unit(inputs.s[c]) && unit(inputs.t[c]) {
                 0
             } else {
@@ -155,12 +154,9 @@ pub(crate) fn evaluate(
         compared += 1;
     }
     for group in 0..searched {
-        let range = groups.starts[group] as usize..groups.starts[group + 1] as usize;
-        members.clear();
-        members.try_reserve(range.len()).map_err(|_| Error::OutOfMemory)?;
-        members.extend_from_slice(&groups.corners[range]);
+        let members = &mut groups.corners[groups.starts[group] as usize..groups.starts[group + 1] as usize];
         members.sort_unstable();
-        tspace::evaluate_group(inputs, &members, groups.orientation[group] != 0, &mut out)?;
+        tspace::evaluate_group(inputs, members, groups.orientation[group] != 0, &mut out)?;
     }
     Ok(Settled {
         components,
@@ -169,18 +165,25 @@ pub(crate) fn evaluate(
     })
 }
 
+/// Whether direction `d` is finite and unit within 1e-4: a root's directions must be, to serve as
+/// the axis of [`within_half_space`].
+#[inline(always)]
+pub(super) fn unit(d: Vec3) -> bool {
+    d.iter().all(|x| x.is_finite()) && (dot(d, d) - 1.0).abs() <= 1e-4
+}
+
 /// Whether direction `d` keeps the half-space condition of [`super::tspace`] against the unit
 /// direction `axis`: finite, and either short (squared length at most 1/4) or unit within 1e-4
 /// and more than 0.01 along `axis`.
 #[inline(always)]
-fn within_half_space(axis: Vec3, d: Vec3) -> bool {
+pub(super) fn within_half_space(axis: Vec3, d: Vec3) -> bool {
     let squared = dot(d, d);
     d.iter().all(|x| x.is_finite()) && (squared <= 0.25 || ((squared - 1.0).abs() <= 1e-4 && dot(axis, d) > 0.01))
 }
 
 /// Joins the components of `a` and `b`, the larger root under the smaller.
 #[inline(always)]
-fn union(parent: &mut [u32], a: usize, b: usize) {
+pub(super) fn union(parent: &mut [u32], a: usize, b: usize) {
     let (a, b) = (find(parent, a), find(parent, b));
     if a != b {
         parent[a.max(b)] = a.min(b) as u32;
@@ -190,7 +193,7 @@ fn union(parent: &mut [u32], a: usize, b: usize) {
 /// The root of `x`'s component, halving the path on the way (every parent stays below its
 /// child).
 #[inline(always)]
-fn find(parent: &mut [u32], mut x: usize) -> usize {
+pub(super) fn find(parent: &mut [u32], mut x: usize) -> usize {
     while parent[x] as usize != x {
         let grandparent = parent[parent[x] as usize];
         parent[x] = grandparent;

@@ -13,6 +13,7 @@ mod components;
 mod corner_terms;
 mod faces;
 pub(crate) mod faces_interface;
+mod fans;
 mod groups;
 mod last_run;
 mod neighbors;
@@ -52,8 +53,19 @@ pub(crate) const NONE: u32 = u32::MAX;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Routes {
     pub weld: WeldPath,
-    /// The groups as components ([`components`]), or `None`: by mikktspace.c's search.
-    pub groups: Option<components::Settled>,
+    pub groups: GroupRoute,
+}
+
+/// How a call found mikktspace.c's groups and their tangents.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum GroupRoute {
+    /// One welded vertex at a time ([`fans`]).
+    Fans(components::Settled),
+    /// As components over the whole mesh, by the search near `GROUP_WITH_ANY` triangles
+    /// ([`components`]).
+    Components(components::Settled),
+    /// By the search everywhere: mikktspace.c's own interface, or no good triangle.
+    Search,
 }
 
 /// How a call reproduced mikktspace.c's weld (the tests count which meshes take each way).
@@ -268,7 +280,7 @@ fn compute<'a>(
         *report = Report::default();
         let routes = Routes {
             weld: WeldPath::ByValue,
-            groups: None,
+            groups: GroupRoute::Search,
         };
         return Ok((Buffers::take(&mut Arena::Count(0), 0, 0)?, routes));
     }
@@ -321,7 +333,7 @@ fn compute<'a>(
     } else {
         Routes {
             weld: WeldPath::ByValue,
-            groups: None,
+            groups: GroupRoute::Search,
         }
     };
     // 11. Policies other than LEGACY replace what no frame can be; then per-vertex counts.
@@ -418,6 +430,7 @@ fn solve<S: tspace::Space>(
     //    writes: with two threads or more the pairing, which runs on one, goes beside the
     //    derivatives, which take the others.
     let ranges = parallel::ranges(threads, good);
+    let fans_may_do = extras.is_none() && path == WeldPath::ByValue && S::tangents(&mut *spaces).is_some();
     let (tangent_s, tangent_t, flags) = (&mut b.tangent_s[..good], &mut b.tangent_t[..good], &mut b.flags[..good]);
     let welded = &*b.welded;
     let magnitudes = extras.as_deref_mut().map(|e| &mut e.magnitudes[..good]);
@@ -443,10 +456,16 @@ fn solve<S: tspace::Space>(
         neighbors::pair_edges(ids, values, neighbors, edges);
         Ok(())
     };
-    if ranges.ends().len() > 1 {
-        parallel::join(|| derivatives(threads - 1), pairing).1?;
+    // Taken fan by fan ([`fans`]), the groups need no pairing of every edge first, unless a
+    // GROUP_WITH_ANY triangle calls for the search.
+    let paired_beside = ranges.ends().len() > 1 && !fans_may_do;
+    if paired_beside {
+        parallel::join(|| derivatives(threads - 1), &mut pairing).1?;
     } else {
         derivatives(threads);
+    }
+    let by_fans = fans_may_do && b.flags[..good].iter().all(|&f| f & GROUP_WITH_ANY == 0);
+    if !paired_beside && !by_fans {
         pairing()?;
     }
     if let Some(extras) = extras.as_deref() {
@@ -484,6 +503,58 @@ fn solve<S: tspace::Space>(
         // 7 to 9 at once ([`components`]): at the welded vertices of GROUP_WITH_ANY triangles the
         // groups by mikktspace.c's search, elsewhere as components.
         weigh(threads);
+        if by_fans {
+            let inputs = Inputs {
+                flags: &b.flags[..good],
+                order,
+                s,
+                t,
+                angle,
+                magnitudes: &[],
+                threshold: tspace::threshold_cosine(180.0),
+                face_of: None,
+            };
+            let lists = fans::list(
+                ids,
+                &mut groups.starts[..welded_count + 1],
+                &mut groups.corners[..3 * good],
+            );
+            // Ranges of welded vertices with about as many corners each; a worker writes the
+            // corners in its range of good triangles and spills the others.
+            let ends = ranges.ends();
+            let corner_total = lists.starts[welded_count] as usize;
+            let vertex_ranges = parallel::Ranges::from_ends(
+                parallel::ends(corner_total, ends.len())
+                    .map(|end| lists.starts.partition_point(|&s| (s as usize) < end).min(welded_count)),
+            );
+            let vertex_ends = vertex_ranges.ends();
+            let mut counts = [[0usize; 2]; parallel::MAX_RANGES];
+            let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
+            let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
+            write_in_ranges(
+                ends,
+                order,
+                (tangents, &mut *b.orientation),
+                parts,
+                |out, ((first, &end), counts)| {
+                    *counts = fans::evaluate(&inputs, ids, &lists, first..end, &mut fans::Fan::default(), out)?;
+                    Ok(())
+                },
+            )?;
+            let settled = components::Settled {
+                components: counts.iter().map(|c| c[0]).sum(),
+                compared: counts.iter().map(|c| c[1]).sum(),
+                searched: 0,
+            };
+            return Ok(Solved {
+                routes: Routes {
+                    weld: path,
+                    groups: GroupRoute::Fans(settled),
+                },
+                good,
+                welded_count,
+            });
+        }
         let near = &mut b.table[..welded_count];
         near.fill(0);
         for (corners, &flags) in ids.iter().zip(&b.flags[..good]) {
@@ -515,11 +586,11 @@ fn solve<S: tspace::Space>(
         let parent = assigned.as_flattened_mut();
         let outputs = (tangents, &mut *b.orientation);
         let adjacency = components::Adjacency { ids, neighbors, near };
-        let settled = components::evaluate(&inputs, adjacency, parent, outputs, (&groups, searched))?;
+        let settled = components::evaluate(&inputs, adjacency, parent, outputs, (&mut groups, searched))?;
         return Ok(Solved {
             routes: Routes {
                 weld: path,
-                groups: Some(settled),
+                groups: GroupRoute::Components(settled),
             },
             good,
             welded_count,
@@ -553,36 +624,73 @@ fn solve<S: tspace::Space>(
         face_of: extras.as_deref().map(|e| e.face_of),
     };
     let starts = &groups.starts[..group_count + 1];
-    // Each range's per-corner arrays begin with the triangle of its first good triangle.
-    let triangle_ranges =
-        parallel::Ranges::from_ends(
-            ends.iter()
-                .map(|&end| if end == good { triangles } else { order[end] as usize }),
-        );
-    let triangle_ends = triangle_ranges.ends();
     let members = starts[group_count] as usize;
     let group_ranges = parallel::Ranges::from_ends(
         parallel::ends(members, ends.len()).map(|end| starts.partition_point(|&s| (s as usize) < end)),
     );
     let group_ends = group_ranges.ends();
     let member_ends = parallel::Ranges::from_ends(group_ends.iter().map(|&g| starts[g] as usize));
-    let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
     let first_groups = core::iter::once(0).chain(group_ends.iter().copied());
+    let parts = parallel::split(&mut *groups.corners, member_ends.ends(), 1).zip(first_groups.zip(group_ends.iter()));
+    let orientations = &*groups.orientation;
+    let outputs = (&mut *spaces, &mut *b.orientation);
+    write_in_ranges(
+        ends,
+        order,
+        outputs,
+        parts,
+        |out, (corners, (first_group, &end_group))| {
+            let base = starts[first_group] as usize;
+            for group in first_group..end_group {
+                let members = &mut corners[starts[group] as usize - base..starts[group + 1] as usize - base];
+                members.sort_unstable();
+                tspace::evaluate_group(&inputs, members, orientations[group] != 0, out)?;
+            }
+            Ok(())
+        },
+    )?;
+    Ok(Solved {
+        routes: Routes {
+            weld: path,
+            groups: GroupRoute::Search,
+        },
+        good,
+        welded_count,
+    })
+}
+
+/// Runs `work(out, part)` for each range of good triangles `ends`, beside the others: `out` writes
+/// the corners of the range's good triangles in place in `spaces` and `orientation` (per corner of
+/// every triangle; good triangle `g` is triangle `order[g]`), and holds the others until every
+/// worker is done.
+fn write_in_ranges<S: tspace::Space, P: Send>(
+    ends: &[usize],
+    order: &[u32],
+    (spaces, orientation): (&mut [S], &mut [u8]),
+    parts: impl Iterator<Item = P>,
+    work: impl Fn(&mut tspace::Written<S>, P) -> Result<(), Error> + Sync,
+) -> Result<(), Error> {
+    // Each range's per-corner arrays begin with the triangle of its first good triangle.
+    let triangles = orientation.len() / 3;
+    let triangle_ranges = parallel::Ranges::from_ends(ends.iter().map(|&end| {
+        if end == order.len() {
+            triangles
+        } else {
+            order[end] as usize
+        }
+    }));
+    let triangle_ends = triangle_ranges.ends();
+    let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
     // Empty until a range spills: one range allocates nothing.
     let mut spilled: [Vec<tspace::Spilled<S>>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
     let mut outcomes: [Result<(), Error>; parallel::MAX_RANGES] = core::array::from_fn(|_| Ok(()));
-    let parts = parallel::split(&mut *spaces, triangle_ends, 3)
-        .zip(parallel::split(&mut *b.orientation, triangle_ends, 3))
-        .zip(parallel::split(&mut *groups.corners, member_ends.ends(), 1))
+    let ranges = parallel::split(&mut *spaces, triangle_ends, 3)
+        .zip(parallel::split(&mut *orientation, triangle_ends, 3))
         .zip(first_triangles.zip(ends.iter()))
-        .zip(first_groups.zip(group_ends.iter()))
-        .zip(spilled.iter_mut().zip(outcomes.iter_mut()));
-    let orientations = &*groups.orientation;
-    parallel::run_ranges(ends, parts, |first, parts| {
-        let (
-            ((((spaces, orientation), corners), (first_triangle, &end)), (first_group, &end_group)),
-            (spilled, outcome),
-        ) = parts;
+        .zip(spilled.iter_mut().zip(outcomes.iter_mut()))
+        .zip(parts);
+    parallel::run_ranges(ends, ranges, |first, ranges| {
+        let ((((spaces, orientation), (first_triangle, &end)), (spilled, outcome)), part) = ranges;
         let mut out = tspace::Written {
             spaces,
             orientation,
@@ -590,31 +698,14 @@ fn solve<S: tspace::Space>(
             first_triangle,
             spilled,
         };
-        let base = starts[first_group] as usize;
-        for group in first_group..end_group {
-            let members = &mut corners[starts[group] as usize - base..starts[group + 1] as usize - base];
-            members.sort_unstable();
-            let preserving = orientations[group] != 0;
-            *outcome = tspace::evaluate_group(&inputs, members, preserving, &mut out);
-            if outcome.is_err() {
-                return;
-            }
-        }
+        *outcome = work(&mut out, part);
     });
     outcomes.into_iter().collect::<Result<(), Error>>()?;
-
     for &(corner, space, preserving) in spilled.iter().flatten() {
         spaces[corner as usize] = space;
-        b.orientation[corner as usize] = preserving;
+        orientation[corner as usize] = preserving;
     }
-    Ok(Solved {
-        routes: Routes {
-            weld: path,
-            groups: None,
-        },
-        good,
-        welded_count,
-    })
+    Ok(())
 }
 
 /// 10. Degenerate triangles copy the first good corner of the same welded vertex

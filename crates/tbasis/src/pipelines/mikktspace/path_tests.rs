@@ -2,7 +2,7 @@
 //! mesh uses shows up.
 #![forbid(unsafe_code)]
 
-use super::{components, compute, scratch_bytes, Routes, WeldPath};
+use super::{components, compute, scratch_bytes, GroupRoute, Routes, WeldPath};
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::Options;
 use crate::kernel::report::Report;
@@ -26,7 +26,7 @@ fn routes_of(
 }
 
 #[test]
-fn the_benchmark_torus_welds_by_value_and_groups_by_components() {
+fn the_benchmark_torus_welds_by_value_and_groups_fan_by_fan() {
     let torus = scenes::build(&scenes::SceneSpec::torus(20_000));
     let routes = routes_of(
         &torus.positions,
@@ -36,7 +36,9 @@ fn the_benchmark_torus_welds_by_value_and_groups_by_components() {
         false,
     );
     assert_eq!(routes.weld, WeldPath::ByValue);
-    let settled = routes.groups.expect("the groups as components");
+    let GroupRoute::Fans(settled) = routes.groups else {
+        panic!("the torus's groups by {:?}", routes.groups);
+    };
     assert!(
         settled.components > 0 && settled.compared == 0 && settled.searched == 0,
         "{settled:?}"
@@ -49,9 +51,11 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
         return;
     }
     let dir = load::corpus_dir().expect("the corpus");
-    // Corners per way: by value, replayed for the attributes, replayed for the last run. Groups
-    // per way: as components, of which compared pairwise, and by the search.
+    // Corners per way: by value, replayed for the attributes, replayed for the last run. Corners
+    // per group route: fan by fan, over the mesh. Groups: as components (either route), of which
+    // compared pairwise, and by the search.
     let mut corners = [0usize; 3];
+    let mut routed = [0usize; 2];
     let mut groups = components::Settled::default();
     let mut lines = Vec::new();
     for row in load::read_manifest(&dir).expect("MANIFEST.tsv") {
@@ -72,15 +76,21 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
                 WeldPath::ReplayedForLastRun => 2,
             };
             corners[way] += indices.len();
-            let settled = routes.groups.expect("triangles take the components route");
+            let (route, settled) = match routes.groups {
+                GroupRoute::Fans(settled) => (0, settled),
+                GroupRoute::Components(settled) => (1, settled),
+                GroupRoute::Search => panic!("{} #{p}: triangles grouped by the search alone", row.path),
+            };
+            routed[route] += indices.len();
             groups.components += settled.components;
             groups.compared += settled.compared;
             groups.searched += settled.searched;
             lines.push(format!(
-                "{} #{p}: {} corners, {:?}, groups: {} as components ({} compared), {} by search",
+                "{} #{p}: {} corners, {:?}, {}: {} groups as components ({} compared), {} by search",
                 row.path,
                 indices.len(),
                 routes.weld,
+                ["fan by fan", "over the mesh"][route],
                 settled.components,
                 settled.compared,
                 settled.searched
@@ -93,8 +103,10 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
         "corners welded by value: {by_value}; replayed for their attributes: {for_attributes}; \
          replayed for the last run: {for_last_run}"
     );
+    let [by_fans, over_the_mesh] = routed;
     eprintln!(
-        "groups as components: {}, of which compared pairwise: {}; by search: {}",
+        "corners grouped fan by fan: {by_fans}; over the mesh: {over_the_mesh}; groups as components: {}, \
+         of which compared pairwise: {}; by search: {}",
         groups.components, groups.compared, groups.searched
     );
     // Each way is taken somewhere: none goes untested by the corpus.
@@ -104,6 +116,8 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
         "no corpus mesh has attributes the weld by value declines"
     );
     assert!(for_last_run > 0, "no corpus mesh needs the last run replayed");
+    assert!(by_fans > 0, "no corpus mesh is grouped fan by fan");
+    assert!(over_the_mesh > 0, "no corpus mesh is grouped over the mesh");
     assert!(groups.components > 0, "no corpus mesh groups as components");
     assert!(groups.compared > 0, "no corpus component needs the pairwise comparison");
     assert!(groups.searched > 0, "no corpus mesh needs the search for its groups");

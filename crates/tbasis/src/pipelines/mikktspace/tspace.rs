@@ -160,6 +160,26 @@ pub(crate) struct Written<'a, S> {
     pub spilled: &'a mut Vec<Spilled<S>>,
 }
 
+impl<S: Copy> Written<'_, S> {
+    /// Writes corner `c` (`3 g + k` for corner `k` of good triangle `g`, triangle `order[g]`), or
+    /// spills it when `g` is outside the range. Fails when memory for a spill cannot be had.
+    #[inline(always)]
+    pub fn write(&mut self, order: &[u32], c: usize, space: S, preserving: bool) -> Result<(), Error> {
+        let (good, k) = (c / 3, c % 3);
+        let triangle = order[good] as usize;
+        if self.goods.contains(&(good as u32)) {
+            let corner = 3 * (triangle - self.first_triangle) + k;
+            self.spaces[corner] = space;
+            self.orientation[corner] = u8::from(preserving);
+        } else {
+            self.spilled.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
+            self.spilled
+                .push(((3 * triangle + k) as u32, space, u8::from(preserving)));
+        }
+        Ok(())
+    }
+}
+
 /// Writes the space and orientation of the group's `corners` (`3 g + k` for corner `k` of good
 /// triangle `g`, one per triangle, in ascending order): those outside `out`'s range are spilled.
 /// Fails when memory for a spill or for the pairwise comparison cannot be had.
@@ -173,19 +193,7 @@ pub(crate) fn evaluate_group<S: Space>(
     let good = |j: usize| corners[j] / 3;
     let (s, t) = (inputs.s, inputs.t);
     let usable = |j: usize| inputs.flags[good(j) as usize] & GROUP_WITH_ANY == 0;
-    let write = |j: usize, space: S, out: &mut Written<S>| -> Result<(), Error> {
-        let (triangle, k) = (inputs.order[good(j) as usize] as usize, corner(j) % 3);
-        if out.goods.contains(&good(j)) {
-            let corner = 3 * (triangle - out.first_triangle) + k;
-            out.spaces[corner] = space;
-            out.orientation[corner] = u8::from(preserving);
-        } else {
-            out.spilled.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
-            out.spilled
-                .push(((3 * triangle + k) as u32, space, u8::from(preserving)));
-        }
-        Ok(())
-    };
+    let write = |j: usize, space: S, out: &mut Written<S>| out.write(inputs.order, corner(j), space, preserving);
     let count = corners.len();
 
     // The usual case in one pass: the whole group's sum, and whether its directions lie in one

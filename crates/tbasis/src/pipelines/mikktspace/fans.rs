@@ -1,0 +1,286 @@
+//! Groups and their tangents one welded vertex at a time (`BuildNeighborsFast`,
+//! `Build4RuleGroups`, `GenerateTSpaces`), where the last run of the edge sort cannot matter and
+//! no triangle takes its orientation from a group.
+//!
+//! Everything that decides a group keeps to its welded vertex `v`:
+//! - the pairing of the edges at `v`: those between `v` and `w` all lie in triangles around `v`,
+//!   and in triangle order the k-th running from `v` to `w` pairs with the k-th running from `w`
+//!   to `v` ([`super::neighbors`]; the last run keeps that rule when [`super::last_run`] finds it
+//!   trivial);
+//! - the groups: the connected components of the corners at `v` joined by those pairs between
+//!   triangles of one orientation ([`super::components`]);
+//! - the tangent: the normalized sum of the group's terms in ascending triangle order where its
+//!   directions lie in one half-space, else mikktspace.c's pairwise comparison
+//!   ([`super::tspace`]).
+//!
+//! So the corners of each welded vertex, listed in triangle order, give its groups and their
+//! tangents without any table over the whole mesh, and ranges of welded vertices can go to
+//! separate threads.
+#![forbid(unsafe_code)]
+
+use super::components::{find, union, unit, within_half_space};
+use super::faces::ORIENT_PRESERVING;
+use super::tspace::{self, Inputs, Written};
+use crate::kernel::error::Error;
+use crate::kernel::vector::{add, normalize_if_not_zero, scale, Vec3};
+
+/// Up to this many corners at a welded vertex, the fan's arrays are on the stack and each edge
+/// finds its partner by scanning the fan; past it, they are on the heap and the fan's edges are
+/// sorted.
+const SCAN_LIMIT: usize = 32;
+
+/// Every good corner (`3 g + k`) under its welded vertex, in corner order: welded vertex `v`'s
+/// corners are `corners[starts[v]..starts[v + 1]]`.
+pub(crate) struct Lists<'a> {
+    pub starts: &'a [u32],
+    pub corners: &'a [u32],
+}
+
+/// Fills `starts` (one more word than there are welded vertices) and `corners` (one word per good
+/// corner) from the good triangles' welded vertices `ids`.
+pub(crate) fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> Lists<'a> {
+    starts.fill(0);
+    for &id in ids.iter().flatten() {
+        starts[id as usize + 1] += 1;
+    }
+    for v in 1..starts.len() {
+        starts[v] += starts[v - 1];
+    }
+    // Each vertex's list filled from its start, which then holds its end: the next one's start.
+    for (c, &id) in ids.iter().flatten().enumerate() {
+        let slot = &mut starts[id as usize];
+        corners[*slot as usize] = c as u32;
+        *slot += 1;
+    }
+    starts.copy_within(..starts.len() - 1, 1);
+    starts[0] = 0;
+    Lists { starts, corners }
+}
+
+/// A fan's arrays, per corner: its two other welded vertices (the edge leaving the vertex, the
+/// edge reaching it), its parent in the union-find, its group's sum, whether the group's
+/// directions could part, the corners set aside for the comparison as (root, corner), and a
+/// group's members.
+struct Arrays<'a> {
+    leaving: &'a mut [u32],
+    reaching: &'a mut [u32],
+    parent: &'a mut [u32],
+    sums: &'a mut [Vec3],
+    may_part: &'a mut [bool],
+    set_aside: &'a mut [u64],
+    members: &'a mut [u32],
+}
+
+/// The arrays of a fan of up to [`SCAN_LIMIT`] corners, on the stack: the usual fan allocates
+/// nothing.
+struct Small {
+    leaving: [u32; SCAN_LIMIT],
+    reaching: [u32; SCAN_LIMIT],
+    parent: [u32; SCAN_LIMIT],
+    sums: [Vec3; SCAN_LIMIT],
+    may_part: [bool; SCAN_LIMIT],
+    set_aside: [u64; SCAN_LIMIT],
+    members: [u32; SCAN_LIMIT],
+}
+
+/// The arrays of larger fans, on the heap and kept from one to the next, with the fan's edges to
+/// sort.
+#[derive(Default)]
+pub(crate) struct Fan {
+    leaving: Vec<u32>,
+    reaching: Vec<u32>,
+    parent: Vec<u32>,
+    sums: Vec<Vec3>,
+    may_part: Vec<bool>,
+    set_aside: Vec<u64>,
+    members: Vec<u32>,
+    edges: Vec<u64>,
+}
+
+/// Writes the tangent and orientation of every corner at the welded vertices `vertices` into
+/// `out`; `fan` holds the arrays of fans past [`SCAN_LIMIT`] corners. Returns how many groups
+/// there were, and how many went to the pairwise comparison.
+pub(crate) fn evaluate(
+    inputs: &Inputs,
+    ids: &[[u32; 3]],
+    lists: &Lists,
+    vertices: core::ops::Range<usize>,
+    fan: &mut Fan,
+    out: &mut Written<Vec3>,
+) -> Result<[usize; 2], Error> {
+    let mut counts = [0; 2];
+    let mut small = Small {
+        leaving: [0; SCAN_LIMIT],
+        reaching: [0; SCAN_LIMIT],
+        parent: [0; SCAN_LIMIT],
+        sums: [[0.0; 3]; SCAN_LIMIT],
+        may_part: [false; SCAN_LIMIT],
+        set_aside: [0; SCAN_LIMIT],
+        members: [0; SCAN_LIMIT],
+    };
+    for v in vertices {
+        let corners = &lists.corners[lists.starts[v] as usize..lists.starts[v + 1] as usize];
+        let n = corners.len();
+        let [groups, compared] = if n <= SCAN_LIMIT {
+            let arrays = Arrays {
+                leaving: &mut small.leaving[..n],
+                reaching: &mut small.reaching[..n],
+                parent: &mut small.parent[..n],
+                sums: &mut small.sums[..n],
+                may_part: &mut small.may_part[..n],
+                set_aside: &mut small.set_aside[..n],
+                members: &mut small.members[..n],
+            };
+            evaluate_fan(inputs, ids, corners, arrays, None, out)?
+        } else {
+            fan.reserve(n)?;
+            let arrays = Arrays {
+                leaving: &mut fan.leaving[..n],
+                reaching: &mut fan.reaching[..n],
+                parent: &mut fan.parent[..n],
+                sums: &mut fan.sums[..n],
+                may_part: &mut fan.may_part[..n],
+                set_aside: &mut fan.set_aside[..n],
+                members: &mut fan.members[..n],
+            };
+            evaluate_fan(inputs, ids, corners, arrays, Some(&mut fan.edges), out)?
+        };
+        counts[0] += groups;
+        counts[1] += compared;
+    }
+    Ok(counts)
+}
+
+/// One welded vertex's `corners`, in ascending order; `edges` (room for two per corner) when
+/// there are more than [`SCAN_LIMIT`].
+fn evaluate_fan(
+    inputs: &Inputs,
+    ids: &[[u32; 3]],
+    corners: &[u32],
+    arrays: Arrays,
+    edges: Option<&mut Vec<u64>>,
+    out: &mut Written<Vec3>,
+) -> Result<[usize; 2], Error> {
+    let n = corners.len();
+    let preserving = |i: usize| inputs.flags[corners[i] as usize / 3] & ORIENT_PRESERVING;
+    let Arrays {
+        leaving,
+        reaching,
+        parent,
+        sums,
+        may_part,
+        set_aside,
+        members,
+    } = arrays;
+    for (i, &c) in corners.iter().enumerate() {
+        let (g, k) = (c as usize / 3, c as usize % 3);
+        leaving[i] = ids[g][(k + 1) % 3];
+        reaching[i] = ids[g][(k + 2) % 3];
+        parent[i] = i as u32;
+    }
+
+    // 1. Each pair of edges at the vertex joins its two corners when their triangles agree in
+    //    orientation: the k-th edge leaving toward w with the k-th reaching from w.
+    let join = |i: usize, j: usize, parent: &mut [u32]| {
+        if preserving(i) == preserving(j) {
+            union(parent, i, j);
+        }
+    };
+    match edges {
+        None => {
+            for i in 0..n {
+                let w = leaving[i];
+                let rank = leaving[..i].iter().filter(|&&x| x == w).count();
+                if let Some(j) = (0..n).filter(|&j| reaching[j] == w).nth(rank) {
+                    join(i, j, parent);
+                }
+            }
+        }
+        Some(edges) => {
+            // (w, corner, leaving?) sorted: each w's edges in corner order.
+            edges.clear();
+            for i in 0..n {
+                edges.push(u64::from(leaving[i]) << 32 | (i as u64) << 1 | 1);
+                edges.push(u64::from(reaching[i]) << 32 | (i as u64) << 1);
+            }
+            edges.sort_unstable();
+            for run in edges.chunk_by(|a, b| a >> 32 == b >> 32) {
+                let corner = |e: u64| (e as u32 >> 1) as usize;
+                let leaving = run.iter().filter(|&&e| e & 1 == 1);
+                let reaching = run.iter().filter(|&&e| e & 1 == 0);
+                for (&a, &b) in leaving.zip(reaching) {
+                    join(corner(a), corner(b), parent);
+                }
+            }
+        }
+    }
+
+    // 2. In ascending order, each corner's angle-weighted dP/ds added to its group's sum at the
+    //    root (its first corner), and the half-space condition checked against the root's
+    //    directions (EvalTspace).
+    let (s, t, angle) = (inputs.s, inputs.t, inputs.angle);
+    let mut groups = 0;
+    for i in 0..n {
+        let root = find(parent, i);
+        let (c, r) = (corners[i] as usize, corners[root] as usize);
+        if root == i {
+            groups += 1;
+            sums[i] = [0.0; 3];
+            may_part[i] = !unit(s[c]) || !unit(t[c]);
+        } else if !within_half_space(s[r], s[c]) || !within_half_space(t[r], t[c]) {
+            may_part[root] = true;
+        }
+        sums[root] = add(sums[root], scale(angle[c], s[c]));
+    }
+
+    // 3. Each corner's tangent: its group's sum normalized; where the directions could part,
+    //    set aside as (root, corner).
+    let mut aside = 0;
+    for i in 0..n {
+        let root = find(parent, i);
+        if may_part[root] {
+            set_aside[aside] = (root as u64) << 32 | i as u64;
+            aside += 1;
+            continue;
+        }
+        if root == i {
+            sums[i] = normalize_if_not_zero(sums[i]);
+        }
+        out.write(inputs.order, corners[i] as usize, sums[root], preserving(i) != 0)?;
+    }
+
+    // 4. mikktspace.c's comparison over each group set aside, members in ascending order.
+    let set_aside = &mut set_aside[..aside];
+    set_aside.sort_unstable();
+    let mut compared = 0;
+    for group in set_aside.chunk_by(|a, b| a >> 32 == b >> 32) {
+        compared += 1;
+        for (member, &e) in members.iter_mut().zip(group) {
+            *member = corners[e as u32 as usize];
+        }
+        let root = (group[0] >> 32) as usize;
+        tspace::evaluate_group(inputs, &members[..group.len()], preserving(root) != 0, out)?;
+    }
+    Ok([groups, compared])
+}
+
+impl Fan {
+    /// Room for a fan of `n` corners.
+    fn reserve(&mut self, n: usize) -> Result<(), Error> {
+        fn grow<T: Clone + Default>(v: &mut Vec<T>, n: usize) -> Result<(), Error> {
+            if v.len() < n {
+                v.try_reserve(n - v.len()).map_err(|_| Error::OutOfMemory)?;
+                v.resize(n, T::default());
+            }
+            Ok(())
+        }
+        grow(&mut self.leaving, n)?;
+        grow(&mut self.reaching, n)?;
+        grow(&mut self.parent, n)?;
+        grow(&mut self.sums, n)?;
+        grow(&mut self.may_part, n)?;
+        grow(&mut self.set_aside, n)?;
+        grow(&mut self.members, n)?;
+        self.edges.try_reserve(2 * n).map_err(|_| Error::OutOfMemory)
+    }
+}
