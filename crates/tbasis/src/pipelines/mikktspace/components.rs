@@ -30,12 +30,22 @@ const MAY_PART: u8 = 2;
 const SEARCHED: u32 = NONE;
 
 /// How many groups each way settled: as components, of which the pairwise comparison took some,
-/// and by the search.
+/// and by the search; and how many fans were too large for the stack ([`super::fans`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Settled {
     pub components: usize,
     pub compared: usize,
     pub searched: usize,
+    pub large_fans: usize,
+}
+
+impl core::ops::AddAssign for Settled {
+    fn add_assign(&mut self, other: Settled) {
+        self.components += other.components;
+        self.compared += other.compared;
+        self.searched += other.searched;
+        self.large_fans += other.large_fans;
+    }
 }
 
 /// How the good triangles meet.
@@ -162,6 +172,7 @@ pub(crate) fn evaluate(
         components,
         compared,
         searched,
+        large_fans: 0,
     })
 }
 

@@ -18,7 +18,7 @@
 //! separate threads.
 #![forbid(unsafe_code)]
 
-use super::components::{find, union, unit, within_half_space};
+use super::components::{find, union, unit, within_half_space, Settled};
 use super::faces::ORIENT_PRESERVING;
 use super::tspace::{self, Inputs, Written};
 use crate::kernel::error::Error;
@@ -27,7 +27,8 @@ use crate::kernel::vector::{add, normalize_if_not_zero, scale, Vec3};
 /// Up to this many corners at a welded vertex, the fan's arrays are on the stack and each edge
 /// finds its partner by scanning the fan; past it, they are on the heap and the fan's edges are
 /// sorted.
-const SCAN_LIMIT: usize = 32;
+/// Fuzzing builds (`cfg(fuzzing)`) lower it, so that the fuzzer's small meshes take both ways.
+pub(crate) const SCAN_LIMIT: usize = if cfg!(fuzzing) { 2 } else { 32 };
 
 /// Every good corner (`3 g + k`) under its welded vertex, in corner order: welded vertex `v`'s
 /// corners are `corners[starts[v]..starts[v + 1]]`.
@@ -99,7 +100,7 @@ pub(crate) struct Fan {
 
 /// Writes the tangent and orientation of every corner at the welded vertices `vertices` into
 /// `out`; `fan` holds the arrays of fans past [`SCAN_LIMIT`] corners. Returns how many groups
-/// there were, and how many went to the pairwise comparison.
+/// there were, how many went to the pairwise comparison, and how many fans were large.
 pub(crate) fn evaluate(
     inputs: &Inputs,
     ids: &[[u32; 3]],
@@ -107,8 +108,8 @@ pub(crate) fn evaluate(
     vertices: core::ops::Range<usize>,
     fan: &mut Fan,
     out: &mut Written<Vec3>,
-) -> Result<[usize; 2], Error> {
-    let mut counts = [0; 2];
+) -> Result<Settled, Error> {
+    let mut settled = Settled::default();
     let mut small = Small {
         leaving: [0; SCAN_LIMIT],
         reaching: [0; SCAN_LIMIT],
@@ -133,6 +134,7 @@ pub(crate) fn evaluate(
             };
             evaluate_fan(inputs, ids, corners, arrays, None, out)?
         } else {
+            settled.large_fans += 1;
             fan.reserve(n)?;
             let arrays = Arrays {
                 leaving: &mut fan.leaving[..n],
@@ -145,10 +147,10 @@ pub(crate) fn evaluate(
             };
             evaluate_fan(inputs, ids, corners, arrays, Some(&mut fan.edges), out)?
         };
-        counts[0] += groups;
-        counts[1] += compared;
+        settled.components += groups;
+        settled.compared += compared;
     }
-    Ok(counts)
+    Ok(settled)
 }
 
 /// One welded vertex's `corners`, in ascending order; `edges` (room for two per corner) when

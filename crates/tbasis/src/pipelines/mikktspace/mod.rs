@@ -528,7 +528,7 @@ fn solve<S: tspace::Space>(
                     .map(|end| lists.starts.partition_point(|&s| (s as usize) < end).min(welded_count)),
             );
             let vertex_ends = vertex_ranges.ends();
-            let mut counts = [[0usize; 2]; parallel::MAX_RANGES];
+            let mut counts = [components::Settled::default(); parallel::MAX_RANGES];
             let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
             let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
             write_in_ranges(
@@ -541,11 +541,8 @@ fn solve<S: tspace::Space>(
                     Ok(())
                 },
             )?;
-            let settled = components::Settled {
-                components: counts.iter().map(|c| c[0]).sum(),
-                compared: counts.iter().map(|c| c[1]).sum(),
-                searched: 0,
-            };
+            let mut settled = components::Settled::default();
+            counts.into_iter().for_each(|counts| settled += counts);
             return Ok(Solved {
                 routes: Routes {
                     weld: path,

@@ -82,9 +82,7 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
                 GroupRoute::Search => panic!("{} #{p}: triangles grouped by the search alone", row.path),
             };
             routed[route] += indices.len();
-            groups.components += settled.components;
-            groups.compared += settled.compared;
-            groups.searched += settled.searched;
+            groups += settled;
             lines.push(format!(
                 "{} #{p}: {} corners, {:?}, {}: {} groups as components ({} compared), {} by search",
                 row.path,
@@ -106,8 +104,12 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
     let [by_fans, over_the_mesh] = routed;
     eprintln!(
         "corners grouped fan by fan: {by_fans}; over the mesh: {over_the_mesh}; groups as components: {}, \
-         of which compared pairwise: {}; by search: {}",
-        groups.components, groups.compared, groups.searched
+         of which compared pairwise: {}; by search: {}; fans of more than {} corners: {}",
+        groups.components,
+        groups.compared,
+        groups.searched,
+        super::fans::SCAN_LIMIT,
+        groups.large_fans
     );
     // Each way is taken somewhere: none goes untested by the corpus.
     assert!(by_value > 0, "no corpus mesh welds by value");
@@ -121,4 +123,5 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
     assert!(groups.components > 0, "no corpus mesh groups as components");
     assert!(groups.compared > 0, "no corpus component needs the pairwise comparison");
     assert!(groups.searched > 0, "no corpus mesh needs the search for its groups");
+    assert!(groups.large_fans > 0, "no corpus fan is too large for the stack");
 }
