@@ -119,8 +119,9 @@ typedef struct tbasis_options {
   // degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
   float degenerate_threshold;
   // Optional caller memory of `scratch_size` bytes, any alignment, not shared with any other
-  // buffer; with `threads` 0 or 1 the call then allocates nothing. Working memory: its contents
-  // after a call, successful or not, mean nothing. NULL: the library allocates.
+  // buffer; with `threads` 0 or 1 the call then allocates nothing (MIKKTSPACE: but for two rare
+  // cases, README "Memory"). Working memory: its contents after a call, successful or not, mean
+  // nothing. NULL: the library allocates.
   void *scratch;
   // Size of `scratch` in bytes; at least `tbasis_scratch_size(mesh, options)`.
   size_t scratch_size;

@@ -67,8 +67,9 @@ pub struct tbasis_options {
     /// degenerate; 0: the default, 1e-5. Not used by policy LEGACY.
     pub degenerate_threshold: f32,
     /// Optional caller memory of `scratch_size` bytes, any alignment, not shared with any other
-    /// buffer; with `threads` 0 or 1 the call then allocates nothing. Working memory: its contents
-    /// after a call, successful or not, mean nothing. NULL: the library allocates.
+    /// buffer; with `threads` 0 or 1 the call then allocates nothing (MIKKTSPACE: but for two rare
+    /// cases, README "Memory"). Working memory: its contents after a call, successful or not, mean
+    /// nothing. NULL: the library allocates.
     pub scratch: *mut c_void,
     /// Size of `scratch` in bytes; at least `tbasis_scratch_size(mesh, options)`.
     pub scratch_size: usize,

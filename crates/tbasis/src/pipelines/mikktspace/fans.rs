@@ -22,6 +22,7 @@ use super::components::{find, union, unit, within_half_space, Settled};
 use super::faces::ORIENT_PRESERVING;
 use super::tspace::{self, Inputs, Written};
 use crate::kernel::error::Error;
+use crate::kernel::parallel;
 use crate::kernel::vector::{add, normalize_if_not_zero, scale, Vec3};
 
 /// Up to this many corners at a welded vertex, the fan's arrays are on the stack and each edge
@@ -32,14 +33,14 @@ pub(crate) const SCAN_LIMIT: usize = if cfg!(fuzzing) { 2 } else { 32 };
 
 /// Every good corner (`3 g + k`) under its welded vertex, in corner order: welded vertex `v`'s
 /// corners are `corners[starts[v]..starts[v + 1]]`.
-pub(crate) struct Lists<'a> {
-    pub starts: &'a [u32],
-    pub corners: &'a [u32],
+struct Lists<'a> {
+    starts: &'a [u32],
+    corners: &'a [u32],
 }
 
 /// Fills `starts` (one more word than there are welded vertices) and `corners` (one word per good
 /// corner) from the good triangles' welded vertices `ids`.
-pub(crate) fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> Lists<'a> {
+fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> Lists<'a> {
     starts.fill(0);
     for &id in ids.iter().flatten() {
         starts[id as usize + 1] += 1;
@@ -56,6 +57,37 @@ pub(crate) fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut
     starts.copy_within(..starts.len() - 1, 1);
     starts[0] = 0;
     Lists { starts, corners }
+}
+
+/// Writes every good corner's tangent and orientation into `outputs` (per corner of every
+/// triangle), on the ranges of good triangles `ends`: each worker takes a range of welded vertices
+/// with about as many corners as the others, writes the corners in its range of good triangles and
+/// spills the others. `lists` is the memory for [`list`].
+pub(crate) fn evaluate_on_ranges(
+    inputs: &Inputs,
+    ids: &[[u32; 3]],
+    ends: &[usize],
+    (starts, corners): (&mut [u32], &mut [u32]),
+    outputs: (&mut [Vec3], &mut [u8]),
+) -> Result<Settled, Error> {
+    let lists = list(ids, starts, corners);
+    let welded_count = lists.starts.len() - 1;
+    let corner_total = lists.starts[welded_count] as usize;
+    let vertex_ranges = parallel::Ranges::from_ends(
+        parallel::ends(corner_total, ends.len())
+            .map(|end| lists.starts.partition_point(|&s| (s as usize) < end).min(welded_count)),
+    );
+    let vertex_ends = vertex_ranges.ends();
+    let mut counts = [Settled::default(); parallel::MAX_RANGES];
+    let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
+    let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
+    super::write_in_ranges(ends, inputs.order, outputs, parts, |out, ((first, &end), counts)| {
+        *counts = evaluate(inputs, ids, &lists, first..end, &mut Fan::default(), out)?;
+        Ok(())
+    })?;
+    let mut settled = Settled::default();
+    counts.into_iter().for_each(|counts| settled += counts);
+    Ok(settled)
 }
 
 /// A fan's arrays, per corner: its two other welded vertices (the edge leaving the vertex, the
@@ -87,7 +119,7 @@ struct Small {
 /// The arrays of larger fans, on the heap and kept from one to the next, with the fan's edges to
 /// sort.
 #[derive(Default)]
-pub(crate) struct Fan {
+struct Fan {
     leaving: Vec<u32>,
     reaching: Vec<u32>,
     parent: Vec<u32>,
@@ -101,7 +133,7 @@ pub(crate) struct Fan {
 /// Writes the tangent and orientation of every corner at the welded vertices `vertices` into
 /// `out`; `fan` holds the arrays of fans past [`SCAN_LIMIT`] corners. Returns how many groups
 /// there were, how many went to the pairwise comparison, and how many fans were large.
-pub(crate) fn evaluate(
+fn evaluate(
     inputs: &Inputs,
     ids: &[[u32; 3]],
     lists: &Lists,

@@ -500,73 +500,19 @@ fn solve<S: tspace::Space>(
         });
     };
     if let (None, Some(tangents)) = (&extras, S::tangents(&mut *spaces)) {
-        // 7 to 9 at once ([`components`]): at the welded vertices of GROUP_WITH_ANY triangles the
-        // groups by mikktspace.c's search, elsewhere as components.
+        // 7 to 9 at once: fan by fan ([`fans`]) or over the mesh ([`components`]), mikktspace.c's
+        // search only at the welded vertices of GROUP_WITH_ANY triangles.
         weigh(threads);
-        if by_fans {
-            let inputs = Inputs {
-                flags: &b.flags[..good],
-                order,
-                s,
-                t,
-                angle,
-                magnitudes: &[],
-                threshold: tspace::threshold_cosine(180.0),
-                face_of: None,
-            };
-            let lists = fans::list(
-                ids,
-                &mut groups.starts[..welded_count + 1],
-                &mut groups.corners[..3 * good],
-            );
-            // Ranges of welded vertices with about as many corners each; a worker writes the
-            // corners in its range of good triangles and spills the others.
-            let ends = ranges.ends();
-            let corner_total = lists.starts[welded_count] as usize;
-            let vertex_ranges = parallel::Ranges::from_ends(
-                parallel::ends(corner_total, ends.len())
-                    .map(|end| lists.starts.partition_point(|&s| (s as usize) < end).min(welded_count)),
-            );
-            let vertex_ends = vertex_ranges.ends();
-            let mut counts = [components::Settled::default(); parallel::MAX_RANGES];
-            let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
-            let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
-            write_in_ranges(
-                ends,
-                order,
-                (tangents, &mut *b.orientation),
-                parts,
-                |out, ((first, &end), counts)| {
-                    *counts = fans::evaluate(&inputs, ids, &lists, first..end, &mut fans::Fan::default(), out)?;
-                    Ok(())
-                },
-            )?;
-            let mut settled = components::Settled::default();
-            counts.into_iter().for_each(|counts| settled += counts);
-            return Ok(Solved {
-                routes: Routes {
-                    weld: path,
-                    groups: GroupRoute::Fans(settled),
-                },
-                good,
-                welded_count,
-            });
-        }
-        let near = &mut b.table[..welded_count];
-        near.fill(0);
-        for (corners, &flags) in ids.iter().zip(&b.flags[..good]) {
-            if flags & GROUP_WITH_ANY != 0 {
-                corners.iter().for_each(|&id| near[id as usize] = 1);
-            }
-        }
-        let near = near.contains(&1).then_some(&*near);
+        let near = match by_fans {
+            true => None,
+            false => mark_near(ids, &b.flags[..good], &mut b.table[..welded_count]),
+        };
         let (neighbors, assigned) = (&b.neighbors[..good], &mut b.assigned[..good]);
         let searched = match near {
             Some(near) => {
                 let memory = (&mut groups, &mut *stack);
-                groups::build(ids, neighbors, &mut b.flags[..good], assigned, memory, |id| {
-                    near[id as usize] != 0
-                })
+                let at_near = |id: u32| near[id as usize] != 0;
+                groups::build(ids, neighbors, &mut b.flags[..good], assigned, memory, at_near)
             }
             None => 0,
         };
@@ -580,15 +526,18 @@ fn solve<S: tspace::Space>(
             threshold: tspace::threshold_cosine(180.0),
             face_of: None,
         };
-        let parent = assigned.as_flattened_mut();
         let outputs = (tangents, &mut *b.orientation);
-        let adjacency = components::Adjacency { ids, neighbors, near };
-        let settled = components::evaluate(&inputs, adjacency, parent, outputs, (&mut groups, searched))?;
+        let groups = if by_fans {
+            let lists = (&mut groups.starts[..welded_count + 1], &mut groups.corners[..3 * good]);
+            GroupRoute::Fans(fans::evaluate_on_ranges(&inputs, ids, ranges.ends(), lists, outputs)?)
+        } else {
+            let adjacency = components::Adjacency { ids, neighbors, near };
+            let parent = assigned.as_flattened_mut();
+            let search = (&mut groups, searched);
+            GroupRoute::Components(components::evaluate(&inputs, adjacency, parent, outputs, search)?)
+        };
         return Ok(Solved {
-            routes: Routes {
-                weld: path,
-                groups: GroupRoute::Components(settled),
-            },
+            routes: Routes { weld: path, groups },
             good,
             welded_count,
         });
@@ -654,6 +603,20 @@ fn solve<S: tspace::Space>(
         good,
         welded_count,
     })
+}
+
+/// Marks in `near` (one word per welded vertex) the welded vertices of `GROUP_WITH_ANY`
+/// triangles; `None` when there are none.
+fn mark_near<'n>(ids: &[[u32; 3]], flags: &[u8], near: &'n mut [u32]) -> Option<&'n [u32]> {
+    near.fill(0);
+    let mut any = false;
+    for (corners, &flags) in ids.iter().zip(flags) {
+        if flags & GROUP_WITH_ANY != 0 {
+            corners.iter().for_each(|&id| near[id as usize] = 1);
+            any = true;
+        }
+    }
+    any.then_some(&*near)
 }
 
 /// Runs `work(out, part)` for each range of good triangles `ends`, beside the others: `out` writes

@@ -47,6 +47,21 @@ pub(crate) struct WeldScratch<'a> {
 }
 
 impl<'a> WeldScratch<'a> {
+    /// The cells, and apart from them what [`weld_cells`] works in; `listed`: with room for a list
+    /// of the selected corners.
+    fn cells_apart(&mut self, listed: bool) -> (&mut [u32], CellMemory<'_>) {
+        let memory = CellMemory {
+            hashes: self.hashes,
+            starts: self.starts,
+            cursors: self.cursors,
+            positions: self.positions,
+            entries: self.entries,
+            stack: self.stack,
+            listed: listed.then_some(&mut *self.representative),
+        };
+        (self.cells, memory)
+    }
+
     /// Takes the scratch for `vertex_count` vertices and `corner_count` corners.
     pub fn take(arena: &mut Arena<'a>, vertex_count: usize, corner_count: usize) -> Result<Self, Error> {
         Ok(WeldScratch {
@@ -149,20 +164,11 @@ pub(crate) fn representatives<'s>(
 ) -> Option<&'s [[u32; 3]]> {
     let position = |w: usize| attributes.position(source[w]);
     let seed = attributes.index_zero.unwrap_or_else(|| position(welded[0] as usize));
-    let (min, max) = (0..source.len())
-        .map(position)
-        .fold((seed, seed), |(mut min, mut max), p| {
-            for axis in 0..3 {
-                if min[axis] > p[axis] {
-                    min[axis] = p[axis];
-                } else if max[axis] < p[axis] {
-                    max[axis] = p[axis];
-                }
-            }
-            (min, max)
-        });
+    let (mut min, mut max) = (seed, seed);
+    (0..source.len()).for_each(|w| extend_box(&mut min, &mut max, position(w)));
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
-    let cells = &mut scratch.cells[..source.len()];
+    let (cells, memory) = scratch.cells_apart(true);
+    let cells = &mut cells[..source.len()];
     let mut selected = [false; GRID_CELLS];
     for (w, cell) in cells.iter_mut().enumerate() {
         let k = grid_cell(min[axis], max[axis], position(w)[axis]);
@@ -173,42 +179,16 @@ pub(crate) fn representatives<'s>(
     for (w, &cell) in cells.iter().enumerate() {
         if selected[cell as usize] {
             let v = source[w];
-            scratch.hashes[v as usize] = hash_of(&attributes.key(v).map(canonical_bits));
+            memory.hashes[v as usize] = hash_of(&attributes.key(v).map(canonical_bits));
         }
     }
-    let WeldScratch {
-        hashes,
-        starts,
-        cursors,
-        positions,
-        entries,
-        stack,
-        representative,
-        ..
-    } = scratch;
     let cells = &*cells;
     let locate = |c: usize| {
         let w = welded[c] as usize;
         (cells[w], source[w])
     };
-    let memory = CellMemory {
-        hashes,
-        starts,
-        cursors,
-        positions,
-        entries: &mut entries[..],
-        stack,
-        listed: Some(representative),
-    };
-    let filled = weld_cells(
-        attributes,
-        threads,
-        welded.len(),
-        &locate,
-        (&selected, wanted.corner_limit),
-        memory,
-    )?;
-    Some(&entries[..filled])
+    let selection = (&selected, wanted.corner_limit);
+    weld_cells(attributes, threads, welded.len(), &locate, selection, memory)
 }
 
 /// Steps 1 to 3 of the weld on every cell: the grid, then each cell's corners gathered in corner
@@ -229,10 +209,10 @@ fn split_cells(
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
 
     // 2. Each vertex's grid cell and hash (ranges of vertices on separate threads).
-    let WeldScratch { cells, hashes, .. } = scratch;
+    let (cells, memory) = scratch.cells_apart(false);
     let vertex_ranges = parallel::item_ranges(threads, cells.len(), 1);
     let ends = vertex_ranges.ends();
-    let parts = parallel::split(cells, ends, 1).zip(parallel::split(hashes, ends, 1));
+    let parts = parallel::split(cells, ends, 1).zip(parallel::split(memory.hashes, ends, 1));
     parallel::run_ranges(ends, parts, |first, (cells, hashes)| {
         for (v, (cell, hash)) in (first..).zip(cells.iter_mut().zip(hashes.iter_mut())) {
             let key = attributes.key(v as u32);
@@ -241,44 +221,18 @@ fn split_cells(
             *hash = hash_of(&key.map(canonical_bits));
         }
     });
-    let WeldScratch {
-        cells,
-        hashes,
-        starts,
-        cursors,
-        positions,
-        entries,
-        stack,
-        ..
-    } = scratch;
-    let cells = &**cells;
+    let cells = &*cells;
     let locate = |c: usize| {
         let v = vertex_of(c);
         (cells[v as usize], v)
     };
-    let memory = CellMemory {
-        hashes,
-        starts,
-        cursors,
-        positions,
-        entries,
-        stack,
-        listed: None,
-    };
-    weld_cells(
-        attributes,
-        threads,
-        corner_count,
-        &locate,
-        (&[true; GRID_CELLS], usize::MAX),
-        memory,
-    )
-    .unwrap_or(0)
+    let every_cell = (&[true; GRID_CELLS], usize::MAX);
+    weld_cells(attributes, threads, corner_count, &locate, every_cell, memory).map_or(0, <[_]>::len)
 }
 
 /// What [`weld_cells`] works in: [`WeldScratch`] but the cells.
 struct CellMemory<'m> {
-    hashes: &'m [u32],
+    hashes: &'m mut [u32],
     starts: &'m mut [u32],
     cursors: &'m mut [u32],
     positions: &'m mut [Vec3],
@@ -291,17 +245,17 @@ struct CellMemory<'m> {
 
 /// Step 3 of the weld: each selected cell's corners gathered in corner order, then split and
 /// welded (`MergeVertsFast`), ranges of cells on separate threads. `locate(c)` gives corner `c`'s
-/// cell (or'd with [`UNEQUAL`]) and vertex. Leaves (corner, vertex or [`NONE`], representative
-/// corner) of the `n` corners those cells hold in `entries[..n]` and returns `n`; `None` when `n`
-/// passes `corner_limit` (nothing welded).
-fn weld_cells(
+/// cell (or'd with [`UNEQUAL`]) and vertex. Returns (corner, vertex or [`NONE`], representative
+/// corner) of the corners those cells hold; `None` when they pass `corner_limit` (nothing
+/// welded).
+fn weld_cells<'m>(
     attributes: &Attributes,
     threads: u32,
     corner_count: usize,
     locate: &(dyn Fn(usize) -> (u32, u32) + Sync),
     (selected, corner_limit): (&[bool; GRID_CELLS], usize),
-    memory: CellMemory,
-) -> Option<usize> {
+    memory: CellMemory<'m>,
+) -> Option<&'m [[u32; 3]]> {
     let CellMemory {
         hashes,
         starts,
@@ -369,13 +323,16 @@ fn weld_cells(
             for k in owned {
                 let cell = starts[k] as usize - first..starts[k + 1] as usize - first;
                 if cell.len() > 1 {
-                    let equal = Equality { attributes, hashes };
+                    let equal = Equality {
+                        attributes,
+                        hashes: &*hashes,
+                    };
                     split_and_weld(&equal, &mut positions[cell.clone()], &mut entries[cell], stack);
                 }
             }
         },
     );
-    Some(filled)
+    Some(&entries[..filled])
 }
 
 /// The box mikktspace.c's `if ... else if` updates find, from `seed` (index 0's position) over
@@ -421,6 +378,19 @@ fn bounding_box(
         }
     }
     (min, max)
+}
+
+/// mikktspace.c's update of its bounding box by `p` (`if ... else if`): a coordinate lowers the
+/// minimum or raises the maximum where it compares past them.
+#[inline(always)]
+fn extend_box(min: &mut Vec3, max: &mut Vec3, p: Vec3) {
+    for axis in 0..3 {
+        if min[axis] > p[axis] {
+            min[axis] = p[axis];
+        } else if max[axis] < p[axis] {
+            max[axis] = p[axis];
+        }
+    }
 }
 
 /// The ranges of grid cells the workers take, about equal in corners.
@@ -660,15 +630,7 @@ mod tests {
         // The C's loop, on one thread.
         let one_pass = |points: &[Vec3]| {
             let (mut min, mut max) = (points[0], points[0]);
-            for p in &points[1..] {
-                for axis in 0..3 {
-                    if min[axis] > p[axis] {
-                        min[axis] = p[axis];
-                    } else if max[axis] < p[axis] {
-                        max[axis] = p[axis];
-                    }
-                }
-            }
+            points[1..].iter().for_each(|&p| extend_box(&mut min, &mut max, p));
             (min, max)
         };
         let mut rng = crate::kernel::test_rng::TestRng(0x5EED);
