@@ -135,6 +135,7 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
         (&mut out.spaces, &mut out.preserving),
         slot_of,
         one_degenerate,
+        None,
     );
     for &t in buffers.order[..solved.good]
         .iter()

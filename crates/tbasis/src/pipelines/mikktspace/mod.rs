@@ -81,6 +81,9 @@ pub(crate) enum WeldPath {
     ReplayedForLastRun,
 }
 
+/// What a corner no group reaches keeps: the tangent (1, 0, 0), orientation 0 (w = -1).
+const UNREACHED: (Vec3, u8) = ([1.0, 0.0, 0.0], 0);
+
 /// The largest corner or vertex count: indices stay clear of the sentinels.
 const MAX_COUNT: usize = (u32::MAX / 4) as usize;
 
@@ -297,16 +300,12 @@ fn compute<'a>(
     };
     *report = Report::default();
 
-    // 1. Every corner's vertex, checked against the vertex count, and the default frame
-    //    (1, 0, 0) with w = -1, kept by corners no group reaches; ranges of corners on separate
+    // 1. Every corner's vertex, checked against the vertex count; ranges of corners on separate
     //    threads.
     let ranges = parallel::item_ranges(options.threads, corner_count, 3);
     let ends = ranges.ends();
-    let parts = parallel::split(&mut *buffers.welded, ends, 1)
-        .zip(parallel::split(&mut *buffers.tangents, ends, 1))
-        .zip(parallel::split(&mut *buffers.orientation, ends, 1));
     let in_range = AtomicBool::new(true);
-    parallel::run_ranges(ends, parts, |first, ((welded, tangents), orientation)| {
+    parallel::run_ranges(ends, parallel::split(&mut *buffers.welded, ends, 1), |first, welded| {
         for (c, slot) in (first..).zip(welded.iter_mut()) {
             let v = mesh.indices.corner(c);
             if v >= vertex_count {
@@ -315,8 +314,6 @@ fn compute<'a>(
             }
             *slot = v as u32;
         }
-        tangents.fill([1.0, 0.0, 0.0]);
-        orientation.fill(0);
     });
     if !in_range.into_inner() {
         return Err(mesh.index_error());
@@ -327,7 +324,7 @@ fn compute<'a>(
         let solved = solve(&attributes, options.threads, &mut buffers, &mut *tangents, None, report)?;
         let orientation = core::mem::take(&mut buffers.orientation);
         let (spaces, corners) = ((&mut *tangents, &mut *orientation), |c: usize| c);
-        copy_to_degenerate(&mut buffers, &solved, spaces, corners, |_| false);
+        copy_to_degenerate(&mut buffers, &solved, spaces, corners, |_| false, Some(UNREACHED));
         (buffers.tangents, buffers.orientation) = (tangents, orientation);
         solved.routes
     } else {
@@ -531,6 +528,9 @@ fn solve<S: tspace::Space>(
             let lists = (&mut groups.starts[..welded_count + 1], &mut groups.corners[..3 * good]);
             GroupRoute::Fans(fans::evaluate_on_ranges(&inputs, ids, ranges.ends(), lists, outputs)?)
         } else {
+            // Corners of GROUP_WITH_ANY triangles that no group reaches keep the default.
+            outputs.0.fill(UNREACHED.0);
+            outputs.1.fill(UNREACHED.1);
             let adjacency = components::Adjacency { ids, neighbors, near };
             let parent = assigned.as_flattened_mut();
             let search = (&mut groups, searched);
@@ -670,13 +670,15 @@ fn write_in_ranges<S: tspace::Space, P: Send>(
 
 /// 10. Degenerate triangles copy the first good corner of the same welded vertex
 ///     (DegenEpilogue): `spaces` and `orientation` hold what corner `c` gets at `slot_of(c)`;
-///     triangles `skip` names copy nothing.
+///     triangles `skip` names copy nothing; a corner with nothing to copy gets `unreached`, if
+///     given (else it keeps what it holds).
 fn copy_to_degenerate<S: Copy>(
     b: &mut Buffers,
     solved: &Solved,
     (spaces, orientation): (&mut [S], &mut [u8]),
     slot_of: impl Fn(usize) -> usize,
     skip: impl Fn(usize) -> bool,
+    unreached: Option<(S, u8)>,
 ) {
     let triangles = b.welded.len() / 3;
     if solved.good == triangles {
@@ -696,10 +698,12 @@ fn copy_to_degenerate<S: Copy>(
     for &t in degenerate.iter().filter(|&&t| !skip(t as usize)) {
         for corner in 3 * t as usize..3 * t as usize + 3 {
             let from = first_good[b.welded[corner] as usize];
+            let to = slot_of(corner);
             if from != NONE {
-                let (from, to) = (slot_of(from as usize), slot_of(corner));
-                spaces[to] = spaces[from];
-                orientation[to] = orientation[from];
+                let from = slot_of(from as usize);
+                (spaces[to], orientation[to]) = (spaces[from], orientation[from]);
+            } else if let Some((space, preserving)) = unreached {
+                (spaces[to], orientation[to]) = (space, preserving);
             }
         }
     }
