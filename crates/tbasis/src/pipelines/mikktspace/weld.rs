@@ -276,8 +276,11 @@ fn weld_cells<'m>(
         }
     }
     let list = list.map(|(list, count)| &list[..count]);
-    for k in 0..GRID_CELLS {
-        starts[k + 1] += starts[k];
+    // A running total in a register: each cell's start does not wait on the store of the last.
+    let mut total = 0;
+    for start in &mut starts[1..] {
+        total += *start;
+        *start = total;
     }
     let filled = starts[GRID_CELLS] as usize;
     if filled > corner_limit {
