@@ -59,6 +59,14 @@ fn generate_tangents_makes_mikktspace_c_calls_on_every_corpus_mesh() {
 }
 
 #[test]
+fn a_far_first_corner_behind_an_ignored_face_leaves_the_weld_box_alone() {
+    // Thousands of small meshes: a widened box moves the grid on a few percent of them only.
+    let meshes: Vec<FaceMesh> = (0..3000).map(face_scenes::far_first_corner).collect();
+    let departures: Vec<String> = meshes.iter().flat_map(departures).collect();
+    assert_no_departures("far first corners", &departures, meshes.len());
+}
+
+#[test]
 fn a_failed_allocation_returns_false_with_no_call() {
     // Quads, 5-vertex faces and degenerate faces on one thread and, at 30 degrees, the pairwise
     // sub-group search with its own allocations.

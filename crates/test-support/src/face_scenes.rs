@@ -456,6 +456,48 @@ pub fn generated() -> Vec<FaceMesh> {
     meshes
 }
 
+/// Behind a first face of 5 vertices, which mikktspace.c ignores but for its vertex 0's position,
+/// 3 to 14 triangles over 3 to 8 vertices, the first triangle's first corner alone far out at
+/// x = 100. mikktspace.c's weld starts its bounding box at that ignored vertex and leaves the
+/// first corner out: that corner's position must not widen the box, whose grid decides which
+/// corner represents each welded vertex, and so the edge sort's last run.
+pub fn far_first_corner(seed: u64) -> FaceMesh {
+    let mut rng = Pcg32::new(seed, 29);
+    let mut below = |n: usize| rng.next_u32() as usize % n;
+    let mut out = FaceMesh::new(&format!("far first corner behind an ignored face (seed {seed})"));
+    out.push_face((0..5).map(|_| ([0.5, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0])));
+    let up = [0.0, 0.0, 1.0];
+    let far = out.vertex(Vertex {
+        position: [100.0, 0.0, 0.0],
+        normal: up,
+        uv: [0.9, 0.1],
+    });
+    // Few distinct coordinates, so that positions repeat and weld.
+    let levels = [0.0f32, 0.001, 0.003, 0.2, 0.5, 0.8, 1.0];
+    let pool: Vec<u32> = (0..3 + below(6))
+        .map(|_| {
+            let [x, y] = [levels[below(levels.len())], levels[below(3)]];
+            let uv = [3.0 * x + y, 5.0 * y - x];
+            out.vertex(Vertex {
+                position: [x, y, 0.0],
+                normal: up,
+                uv,
+            })
+        })
+        .collect();
+    for t in 0..3 + below(12) {
+        let mut face = if t == 0 { vec![far] } else { Vec::new() };
+        while face.len() < 3 {
+            let v = pool[below(pool.len())];
+            if !face.contains(&v) {
+                face.push(v);
+            }
+        }
+        out.face(&face);
+    }
+    out
+}
+
 /// `mesh` behind a first face of 5 vertices at `far`, which mikktspace.c ignores but for its
 /// vertex 0's position: that starts the bounding box of its weld, and so moves its grid.
 pub fn after_ignored_face(mesh: &FaceMesh, far: f32) -> FaceMesh {

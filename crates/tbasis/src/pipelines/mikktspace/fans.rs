@@ -92,7 +92,8 @@ pub(crate) fn evaluate_on_ranges(
 
 /// A fan's arrays, per corner: its two other welded vertices (the edge leaving the vertex, the
 /// edge reaching it), its parent in the union-find, its group's sum, whether the group's
-/// directions could part, the corners set aside for the comparison as (root, corner), and a
+/// directions could part, the corners set aside for the comparison as (root, corner) by their place
+/// in the fan, and a
 /// group's members.
 struct Arrays<'a> {
     leaving: &'a mut [u32],
@@ -268,7 +269,7 @@ fn evaluate_fan(
     }
 
     // 3. Each corner's tangent: its group's sum normalized; where the directions could part,
-    //    set aside as (root, corner).
+    //    set aside as (root, corner), places in the fan.
     let mut aside = 0;
     for i in 0..n {
         let root = find(parent, i);

@@ -64,7 +64,7 @@ pub(crate) enum GroupRoute {
     /// As components over the whole mesh, by the search near `GROUP_WITH_ANY` triangles
     /// ([`components`]).
     Components(components::Settled),
-    /// By the search everywhere: mikktspace.c's own interface, or no good triangle.
+    /// By the search everywhere: mikktspace.c's own interface, or no corner at all.
     Search,
 }
 

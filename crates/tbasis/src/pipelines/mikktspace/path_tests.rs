@@ -56,7 +56,7 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
     // compared pairwise, and by the search.
     let mut corners = [0usize; 3];
     let mut routed = [0usize; 2];
-    let mut groups = components::Settled::default();
+    let mut groups = [components::Settled::default(); 2];
     let mut lines = Vec::new();
     for row in load::read_manifest(&dir).expect("MANIFEST.tsv") {
         // Debug builds leave out the largest meshes, as the corpus tests do.
@@ -82,7 +82,7 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
                 GroupRoute::Search => panic!("{} #{p}: triangles grouped by the search alone", row.path),
             };
             routed[route] += indices.len();
-            groups += settled;
+            groups[route] += settled;
             lines.push(format!(
                 "{} #{p}: {} corners, {:?}, {}: {} groups as components ({} compared), {} by search",
                 row.path,
@@ -102,15 +102,17 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
          replayed for the last run: {for_last_run}"
     );
     let [by_fans, over_the_mesh] = routed;
-    eprintln!(
-        "corners grouped fan by fan: {by_fans}; over the mesh: {over_the_mesh}; groups as components: {}, \
-         of which compared pairwise: {}; by search: {}; fans of more than {} corners: {}",
-        groups.components,
-        groups.compared,
-        groups.searched,
-        super::fans::SCAN_LIMIT,
-        groups.large_fans
-    );
+    for (route, (corners, settled)) in ["fan by fan", "over the mesh"].iter().zip(routed.iter().zip(&groups)) {
+        eprintln!(
+            "{route}: {corners} corners, {} groups as components, of which compared pairwise: {}; by \
+             search: {}; fans of more than {} corners: {}",
+            settled.components,
+            settled.compared,
+            settled.searched,
+            super::fans::SCAN_LIMIT,
+            settled.large_fans
+        );
+    }
     // Each way is taken somewhere: none goes untested by the corpus.
     assert!(by_value > 0, "no corpus mesh welds by value");
     assert!(
@@ -118,10 +120,20 @@ fn every_corpus_mesh_reports_the_routes_it_takes() {
         "no corpus mesh has attributes the weld by value declines"
     );
     assert!(for_last_run > 0, "no corpus mesh needs the last run replayed");
-    assert!(by_fans > 0, "no corpus mesh is grouped fan by fan");
-    assert!(over_the_mesh > 0, "no corpus mesh is grouped over the mesh");
-    assert!(groups.components > 0, "no corpus mesh groups as components");
-    assert!(groups.compared > 0, "no corpus component needs the pairwise comparison");
-    assert!(groups.searched > 0, "no corpus mesh needs the search for its groups");
-    assert!(groups.large_fans > 0, "no corpus fan is too large for the stack");
+    let [fans, mesh] = groups;
+    assert!(
+        by_fans > 0 && fans.components > 0,
+        "no corpus mesh is grouped fan by fan"
+    );
+    assert!(fans.compared > 0, "no fan's group needs the pairwise comparison");
+    assert!(fans.large_fans > 0, "no corpus fan is too large for the stack");
+    assert!(
+        over_the_mesh > 0 && mesh.components > 0,
+        "no corpus mesh is grouped over the mesh"
+    );
+    assert!(
+        mesh.compared > 0,
+        "no component over the mesh needs the pairwise comparison"
+    );
+    assert!(mesh.searched > 0, "no corpus mesh needs the search for its groups");
 }

@@ -38,7 +38,8 @@ pub(crate) struct WeldScratch<'a> {
     /// [`UNEQUAL`], representative corner).
     positions: &'a mut [Vec3],
     entries: &'a mut [[u32; 3]],
-    /// Per corner: its representative, then per representative its welded number.
+    /// Per corner: its representative, then per representative its welded number; in a replay of
+    /// selected cells, the list of their corners.
     representative: &'a mut [u32],
     number: &'a mut [u32],
     /// Pending parts of a cell, as (first, last) entry: last, as little of it is used (the
@@ -155,6 +156,9 @@ pub(crate) struct Wanted<'w> {
 /// function of the position. The box's strict comparisons keep, of equal values, the first one
 /// met. The welded vertices are numbered in order of first use, so the first of them with a
 /// given coordinate is the welded vertex of the first corner with it, and has that corner's bits.
+/// The C's box starts at index 0's position and takes the corners from the second on: when index
+/// 0 is corner 0, the welded vertices give that box; when it is an ignored face's vertex
+/// (`index_zero`), corner 0 is left out, so the box comes from the corners.
 pub(crate) fn representatives<'s>(
     attributes: &Attributes,
     threads: u32,
@@ -163,9 +167,15 @@ pub(crate) fn representatives<'s>(
     scratch: &'s mut WeldScratch,
 ) -> Option<&'s [[u32; 3]]> {
     let position = |w: usize| attributes.position(source[w]);
-    let seed = attributes.index_zero.unwrap_or_else(|| position(welded[0] as usize));
-    let (mut min, mut max) = (seed, seed);
-    (0..source.len()).for_each(|w| extend_box(&mut min, &mut max, position(w)));
+    let (min, max) = match attributes.index_zero {
+        Some(seed) => bounding_box(threads, welded.len(), seed, &|c| position(welded[c] as usize)),
+        None => {
+            let seed = position(welded[0] as usize);
+            let (mut min, mut max) = (seed, seed);
+            (0..source.len()).for_each(|w| extend_box(&mut min, &mut max, position(w)));
+            (min, max)
+        }
+    };
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
     let (cells, memory) = scratch.cells_apart(true);
     let cells = &mut cells[..source.len()];
