@@ -27,8 +27,8 @@ use crate::kernel::vector::{add, normalize_if_not_zero, scale, Vec3};
 
 /// Up to this many corners at a welded vertex, the fan's arrays are on the stack and each edge
 /// finds its partner by scanning the fan; past it, they are on the heap and the fan's edges are
-/// sorted.
-/// Fuzzing builds (`cfg(fuzzing)`) lower it, so that the fuzzer's small meshes take both ways.
+/// sorted. Fuzzing builds (`cfg(fuzzing)`) lower it, so that the fuzzer's small meshes take both
+/// ways.
 pub(crate) const SCAN_LIMIT: usize = if cfg!(fuzzing) { 2 } else { 32 };
 
 /// Every good corner (`3 g + k`) under its welded vertex, in corner order: welded vertex `v`'s
@@ -45,8 +45,10 @@ fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> 
     for &id in ids.iter().flatten() {
         starts[id as usize + 1] += 1;
     }
-    for v in 1..starts.len() {
-        starts[v] += starts[v - 1];
+    let mut total = 0;
+    for start in &mut starts[1..] {
+        total += *start;
+        *start = total;
     }
     // Each vertex's list filled from its start, which then holds its end: the next one's start.
     for (c, &id) in ids.iter().flatten().enumerate() {
@@ -90,11 +92,10 @@ pub(crate) fn evaluate_on_ranges(
     Ok(settled)
 }
 
-/// A fan's arrays, per corner: its two other welded vertices (the edge leaving the vertex, the
-/// edge reaching it), its parent in the union-find, its group's sum, whether the group's
-/// directions could part, the corners set aside for the comparison as (root, corner) by their place
-/// in the fan, and a
-/// group's members.
+/// A fan's arrays, one element per corner: its two other welded vertices (the edge leaving the
+/// vertex, the edge reaching it), its parent in the union-find, its group's sum and whether the
+/// group's directions could part; the corners set aside for the comparison, as (root, corner) by
+/// their places in the fan; a group's members.
 struct Arrays<'a> {
     leaving: &'a mut [u32],
     reaching: &'a mut [u32],
