@@ -500,9 +500,10 @@ fn solve<S: tspace::Space>(
         // 7 to 9 at once: fan by fan ([`fans`]) or over the mesh ([`components`]), mikktspace.c's
         // search only at the welded vertices of GROUP_WITH_ANY triangles.
         weigh(threads);
-        let near = match by_fans {
-            true => None,
-            false => mark_near(ids, &b.flags[..good], &mut b.table[..welded_count]),
+        let near = if by_fans {
+            None
+        } else {
+            mark_near(ids, &b.flags[..good], &mut b.table[..welded_count])
         };
         let (neighbors, assigned) = (&b.neighbors[..good], &mut b.assigned[..good]);
         let searched = match near {
