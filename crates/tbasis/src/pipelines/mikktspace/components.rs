@@ -18,10 +18,10 @@
 
 use super::faces::ORIENT_PRESERVING;
 use super::groups::Groups;
-use super::tspace::{self, Inputs, Spilled, Written};
+use super::tspace::{self, Inputs, Space, Spilled, Written};
 use super::NONE;
 use crate::kernel::error::Error;
-use crate::kernel::vector::{add, dot, normalize_if_not_zero, scale, Vec3};
+use crate::kernel::vector::{dot, Vec3};
 
 /// In a root's `orientation` until the second pass: its group's directions could part.
 const MAY_PART: u8 = 2;
@@ -110,16 +110,11 @@ pub(crate) fn evaluate(
         if root == c {
             components += 1;
             spaces[slot(c)] = [0.0; 3];
-            orientation[slot(c)] = if unit(inputs.s[c]) && unit(inputs.t[c]) {
-                0
-            } else {
-                MAY_PART
-            };
-        } else if !within_half_space(inputs.s[root], inputs.s[c]) || !within_half_space(inputs.t[root], inputs.t[c]) {
+            orientation[slot(c)] = if may_part(inputs, c, c) { MAY_PART } else { 0 };
+        } else if may_part(inputs, root, c) {
             orientation[slot(root)] = MAY_PART;
         }
-        let sum = &mut spaces[slot(root)];
-        *sum = add(*sum, scale(inputs.angle[c], inputs.s[c]));
+        <Vec3 as Space>::add(&mut spaces[slot(root)], inputs, c);
     }
 
     // 3. Each root's sum normalized, then copied to its members; those of a group whose
@@ -136,7 +131,7 @@ pub(crate) fn evaluate(
             continue;
         }
         if root == c {
-            spaces[slot(c)] = normalize_if_not_zero(spaces[slot(c)]);
+            spaces[slot(c)] = Space::finish(spaces[slot(c)]);
         }
         spaces[slot(c)] = spaces[slot(root)];
         orientation[slot(c)] = preserving(c);
@@ -176,18 +171,24 @@ pub(crate) fn evaluate(
     })
 }
 
-/// Whether direction `d` is finite and unit within 1e-4: a root's directions must be, to serve as
-/// the axis of [`within_half_space`].
+/// Whether corner `c` could make its group part into sub-groups, its root being corner `root`
+/// (`c` itself for the root): the root's directions must be unit, to serve as the axes of
+/// [`within_half_space`], and every member's must lie within it.
 #[inline(always)]
-pub(super) fn unit(d: Vec3) -> bool {
-    d.iter().all(|x| x.is_finite()) && (dot(d, d) - 1.0).abs() <= 1e-4
+pub(super) fn may_part(inputs: &Inputs, root: usize, c: usize) -> bool {
+    let unit = |d: Vec3| d.iter().all(|x| x.is_finite()) && (dot(d, d) - 1.0).abs() <= 1e-4;
+    if root == c {
+        !unit(inputs.s[c]) || !unit(inputs.t[c])
+    } else {
+        !within_half_space(inputs.s[root], inputs.s[c]) || !within_half_space(inputs.t[root], inputs.t[c])
+    }
 }
 
 /// Whether direction `d` keeps the half-space condition of [`super::tspace`] against the unit
 /// direction `axis`: finite, and either short (squared length at most 1/4) or unit within 1e-4
 /// and more than 0.01 along `axis`.
 #[inline(always)]
-pub(super) fn within_half_space(axis: Vec3, d: Vec3) -> bool {
+fn within_half_space(axis: Vec3, d: Vec3) -> bool {
     let squared = dot(d, d);
     d.iter().all(|x| x.is_finite()) && (squared <= 0.25 || ((squared - 1.0).abs() <= 1e-4 && dot(axis, d) > 0.01))
 }

@@ -18,12 +18,12 @@
 //! separate threads.
 #![forbid(unsafe_code)]
 
-use super::components::{find, union, unit, within_half_space, Settled};
+use super::components::{self, find, union, Settled};
 use super::faces::ORIENT_PRESERVING;
-use super::tspace::{self, Inputs, Written};
+use super::tspace::{self, Inputs, Space, Written};
 use crate::kernel::error::Error;
 use crate::kernel::parallel;
-use crate::kernel::vector::{add, normalize_if_not_zero, scale, Vec3};
+use crate::kernel::vector::Vec3;
 
 /// Up to this many corners at a welded vertex, the fan's arrays are on the stack and each edge
 /// finds its partner by scanning the fan; past it, they are on the heap and the fan's edges are
@@ -254,7 +254,6 @@ fn evaluate_fan(
     // 2. In ascending order, each corner's angle-weighted dP/ds added to its group's sum at the
     //    root (its first corner), and the half-space condition checked against the root's
     //    directions (EvalTspace).
-    let (s, t, angle) = (inputs.s, inputs.t, inputs.angle);
     let mut groups = 0;
     for i in 0..n {
         let root = find(parent, i);
@@ -262,11 +261,11 @@ fn evaluate_fan(
         if root == i {
             groups += 1;
             sums[i] = [0.0; 3];
-            may_part[i] = !unit(s[c]) || !unit(t[c]);
-        } else if !within_half_space(s[r], s[c]) || !within_half_space(t[r], t[c]) {
+            may_part[i] = components::may_part(inputs, c, c);
+        } else if components::may_part(inputs, r, c) {
             may_part[root] = true;
         }
-        sums[root] = add(sums[root], scale(angle[c], s[c]));
+        <Vec3 as Space>::add(&mut sums[root], inputs, c);
     }
 
     // 3. Each corner's tangent: its group's sum normalized; where the directions could part,
@@ -280,7 +279,7 @@ fn evaluate_fan(
             continue;
         }
         if root == i {
-            sums[i] = normalize_if_not_zero(sums[i]);
+            sums[i] = Space::finish(sums[i]);
         }
         out.write(inputs.order, corners[i] as usize, sums[root], preserving(i) != 0)?;
     }
