@@ -55,10 +55,16 @@ pub(crate) fn weld(
     }
 
     // 1. Each used vertex's class, numbered in vertex order for now; a vertex of each in `spare`.
+    //    A table entry holds the class in its low `id_bits` and low bits of the hash above them,
+    //    so that most entries of other classes are passed over without reading their attributes
+    //    (a class is below the vertex count, so its field is never all ones: no entry is NONE).
     table.fill(NONE);
+    let id_bits = u32::BITS - (class.len() as u32).leading_zeros();
+    let id_mask = NONE.checked_shr(u32::BITS - id_bits).unwrap_or(0);
+    let fingerprint = |hash: u32| hash.checked_shl(id_bits).unwrap_or(0);
     let capacity = table.len() as u64;
     let mut count = 0u32;
-    let mut batch = [(0u32, [0u32; 8], [0u32; 8], 0usize); BATCH];
+    let mut batch = [(0u32, [0u32; 8], [0u32; 8], 0usize, 0u32); BATCH];
     let mut v = 0;
     while v < class.len() {
         let mut pending = 0;
@@ -71,29 +77,33 @@ pub(crate) fn weld(
                 }
                 let canonical = key.map(canonical_bits);
                 // Multiply-shift onto the table: any capacity works.
-                let slot = ((u64::from(hash_of(&canonical)) * capacity) >> 32) as usize;
+                let hash = hash_of(&canonical);
+                let slot = ((u64::from(hash) * capacity) >> 32) as usize;
                 simd::prefetch(table, slot);
-                batch[pending] = (v as u32, key.map(f32::to_bits), canonical, slot);
+                batch[pending] = (v as u32, key.map(f32::to_bits), canonical, slot, fingerprint(hash));
                 pending += 1;
             }
             v += 1;
         }
-        for &(vertex, bits, canonical, mut slot) in &batch[..pending] {
+        for &(vertex, bits, canonical, mut slot, print) in &batch[..pending] {
             class[vertex as usize] = loop {
-                let id = table[slot];
-                if id == NONE {
-                    table[slot] = count;
+                let entry = table[slot];
+                if entry == NONE {
+                    table[slot] = print | count;
                     spare[count as usize] = vertex;
                     count += 1;
                     break count - 1;
                 }
-                let other = attributes.key(spare[id as usize]);
-                if other.map(canonical_bits) == canonical {
-                    if other.map(f32::to_bits) != bits {
-                        // Equal under `==`, different bits: the representative's would matter.
-                        return None;
+                let id = entry & id_mask;
+                if entry & !id_mask == print {
+                    let other = attributes.key(spare[id as usize]);
+                    if other.map(canonical_bits) == canonical {
+                        if other.map(f32::to_bits) != bits {
+                            // Equal under `==`, different bits: the representative's would matter.
+                            return None;
+                        }
+                        break id;
                     }
-                    break id;
                 }
                 slot = if slot + 1 == table.len() { 0 } else { slot + 1 };
             };
