@@ -17,6 +17,7 @@
 use super::attributes::Attributes;
 use super::weld::{self, Wanted, WeldScratch};
 use super::NONE;
+use crate::kernel::vector::Packed;
 
 /// The share of corners the replayed cells may hold (1 in this many) before the full weld is the
 /// cheaper way to every index; up to [`REPLAY_FLOOR`] corners the replay costs little anyway.
@@ -41,14 +42,15 @@ pub(crate) struct Memory<'a> {
 }
 
 /// True when the last run of mikktspace.c's edge sort holds at most the two sides of one edge.
-/// `welded` are the corners' welded vertices, `source` a vertex of each welded vertex, `ids` the
+/// `welded` are the corners' welded vertices, `source` a vertex of each welded vertex and `packed`
+/// its attributes, `ids` the
 /// welded vertices of each good triangle (those mikktspace.c pairs the edges of). False when it does not, or when finding out would cost a large part of the full
 /// weld.
 pub(crate) fn is_trivial(
     attributes: &Attributes,
     threads: u32,
     welded: &[u32],
-    source: &[u32],
+    (source, packed): (&[u32], &[Packed]),
     ids: &[[u32; 3]],
     memory: Memory,
 ) -> bool {
@@ -72,6 +74,7 @@ pub(crate) fn is_trivial(
         threads,
         welded,
         source,
+        packed,
         ids,
         hi,
         corner_limit: (welded.len() / REPLAY_SHARE).max(REPLAY_FLOOR),
@@ -101,6 +104,7 @@ struct Search<'s> {
     threads: u32,
     welded: &'s [u32],
     source: &'s [u32],
+    packed: &'s [Packed],
     ids: &'s [[u32; 3]],
     hi: &'s [u32],
     corner_limit: usize,
@@ -124,7 +128,7 @@ impl Search<'_> {
             welded: wanted,
             corner_limit: self.corner_limit,
         };
-        let welded_vertices = (self.welded, &self.source[..self.hi.len()]);
+        let welded_vertices = (self.welded, &self.source[..self.hi.len()], self.packed);
         weld::representatives(self.attributes, self.threads, welded_vertices, wanted, scratch)
     }
 

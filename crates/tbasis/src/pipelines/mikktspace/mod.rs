@@ -742,7 +742,8 @@ fn settle_last_run(
         weld: WeldScratch::take(&mut phase, vertex_count, corner_count)?,
     };
     let ids = &b.ids[..good];
-    if last_run::is_trivial(attributes, threads, b.welded, b.source, ids, memory) {
+    let welded_vertices = (&*b.source, &b.attributes[..welded_count]);
+    if last_run::is_trivial(attributes, threads, b.welded, welded_vertices, ids, memory) {
         return Ok(WeldPath::ByValue);
     }
     for (c, slot) in b.welded.iter_mut().enumerate() {

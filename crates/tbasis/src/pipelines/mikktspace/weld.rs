@@ -18,7 +18,7 @@ use super::NONE;
 use crate::kernel::error::Error;
 use crate::kernel::memory::Arena;
 use crate::kernel::parallel::{self, Ranges};
-use crate::kernel::vector::Vec3;
+use crate::kernel::vector::{self, Packed, Vec3};
 
 /// mikktspace.c's grid: cells along the widest axis of the bounding box.
 const GRID_CELLS: usize = 2048;
@@ -147,7 +147,8 @@ pub(crate) struct Wanted<'w> {
 /// mikktspace.c's representative corner of each corner in the grid cells holding a welded vertex
 /// `wanted` names, by replaying `MergeVertsFast` on those cells alone: cells are welded
 /// independently. `welded` is every corner's welded vertex from the weld by value
-/// ([`super::value_weld`]) and `source` a vertex of each. Returns `[corner, vertex,
+/// ([`super::value_weld`]), `source` a vertex of each and `packed` its attributes (read in
+/// order, rather than the mesh's through `source`). Returns `[corner, vertex,
 /// representative]` for each such corner, the vertex being its welded vertex's source; `None` when
 /// those cells hold more than `wanted.corner_limit` corners (nothing replayed).
 ///
@@ -162,34 +163,35 @@ pub(crate) struct Wanted<'w> {
 pub(crate) fn representatives<'s>(
     attributes: &Attributes,
     threads: u32,
-    (welded, source): (&[u32], &[u32]),
+    (welded, source, packed): (&[u32], &[u32], &[Packed]),
     wanted: Wanted,
     scratch: &'s mut WeldScratch,
 ) -> Option<&'s [[u32; 3]]> {
-    let position = |w: usize| attributes.position(source[w]);
+    let position = |w: usize| vector::position(&packed[w]);
     let (min, max) = match attributes.index_zero {
         Some(seed) => bounding_box(threads, welded.len(), seed, &|c| position(welded[c] as usize)),
         None => {
             let seed = position(welded[0] as usize);
             let (mut min, mut max) = (seed, seed);
-            (0..source.len()).for_each(|w| extend_box(&mut min, &mut max, position(w)));
+            packed
+                .iter()
+                .for_each(|p| extend_box(&mut min, &mut max, vector::position(p)));
             (min, max)
         }
     };
     let axis = widest_axis([max[0] - min[0], max[1] - min[1], max[2] - min[2]]);
     let (cells, memory) = scratch.cells_apart(true);
-    let cells = &mut cells[..source.len()];
+    let cells = &mut cells[..packed.len()];
     let mut selected = [false; GRID_CELLS];
-    for (w, cell) in cells.iter_mut().enumerate() {
-        let k = grid_cell(min[axis], max[axis], position(w)[axis]);
+    for (w, (cell, p)) in cells.iter_mut().zip(packed).enumerate() {
+        let k = grid_cell(min[axis], max[axis], p[axis]);
         *cell = k as u32;
         selected[k] |= (wanted.welded)(w);
     }
     // Only the selected cells' vertices are compared.
-    for (w, &cell) in cells.iter().enumerate() {
+    for ((&cell, &v), key) in cells.iter().zip(source).zip(packed) {
         if selected[cell as usize] {
-            let v = source[w];
-            memory.hashes[v as usize] = hash_of(&attributes.key(v).map(canonical_bits));
+            memory.hashes[v as usize] = hash_of(&key.map(canonical_bits));
         }
     }
     let cells = &*cells;

@@ -175,7 +175,8 @@ fn last_run_outcome(case: &Case, attributes: &Attributes) -> Option<(bool, bool,
         hi: &mut hi,
         weld,
     };
-    let said = last_run::is_trivial(attributes, 1, &welded, &source, &ids, memory);
+    let packed: Vec<_> = source.iter().map(|&v| attributes.key(v)).collect();
+    let said = last_run::is_trivial(attributes, 1, &welded, (&source, &packed), &ids, memory);
     Some((said, truly_trivial, run))
 }
 
