@@ -110,8 +110,12 @@ pub(crate) fn evaluate(
         if root == c {
             components += 1;
             spaces[slot(c)] = [0.0; 3];
-            orientation[slot(c)] = if may_part(inputs, c, c) { MAY_PART } else { 0 };
-        } else if may_part(inputs, root, c) {
+            orientation[slot(c)] = if may_part(inputs.directions(c), None) {
+                MAY_PART
+            } else {
+                0
+            };
+        } else if may_part(inputs.directions(root), Some(inputs.directions(c))) {
             orientation[slot(root)] = MAY_PART;
         }
         <Vec3 as Space>::add(&mut spaces[slot(root)], inputs, c);
@@ -171,16 +175,16 @@ pub(crate) fn evaluate(
     })
 }
 
-/// Whether corner `c` could make its group part into sub-groups, its root being corner `root`
-/// (`c` itself for the root): the root's directions must be unit, to serve as the axes of
-/// [`within_half_space`], and every member's must lie within it.
+/// Whether a corner could make its group part into sub-groups, from the projected directions
+/// ([`Inputs::directions`]) of its group's root and, for a corner other than the root, its own:
+/// the root's must be unit, to serve as the axes of [`within_half_space`], and every member's
+/// must lie within it.
 #[inline(always)]
-pub(super) fn may_part(inputs: &Inputs, root: usize, c: usize) -> bool {
+pub(super) fn may_part([root_s, root_t]: [Vec3; 2], member: Option<[Vec3; 2]>) -> bool {
     let unit = |d: Vec3| d.iter().all(|x| x.is_finite()) && (dot(d, d) - 1.0).abs() <= 1e-4;
-    if root == c {
-        !unit(inputs.s[c]) || !unit(inputs.t[c])
-    } else {
-        !within_half_space(inputs.s[root], inputs.s[c]) || !within_half_space(inputs.t[root], inputs.t[c])
+    match member {
+        None => !unit(root_s) || !unit(root_t),
+        Some([s, t]) => !within_half_space(root_s, s) || !within_half_space(root_t, t),
     }
 }
 

@@ -1,7 +1,8 @@
 //! What `EvalTspace` weighs at each corner of each good triangle, computed once per corner before
 //! any group is evaluated: the triangle's unit dP/ds and dP/dt projected into the tangent plane
-//! of the corner's welded normal and normalized, and the corner angle between its two edges,
-//! projected and normalized likewise, `(float)acos((double)cos)`.
+//! of the corner's welded normal and normalized (unless they are projected when read:
+//! [`super::tspace::Directions`]), and the corner angle between its two edges, projected and
+//! normalized likewise, `(float)acos((double)cos)`.
 //!
 //! These depend on the corner alone, not on its group, so a batch of triangles at a time runs
 //! them in lanes that compile to SIMD ([`crate::simd`]): the same IEEE operations on every lane as
@@ -13,11 +14,10 @@ use crate::kernel::arc_cosine::acos_lanes;
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, Lanes, LANES};
 use crate::kernel::vector::{normal, position, project_normalized, projected_cosine, sub, Packed, Vec3};
 
-/// Per corner `3 g + k` (corner `k` of good triangle `g`): the projected unit dP/ds and dP/dt,
-/// and the corner angle.
+/// Per corner `3 g + k` (corner `k` of good triangle `g`): the projected unit dP/ds and dP/dt
+/// (`None`: not stored, [`super::tspace::Directions::Projected`]), and the corner angle.
 pub(crate) struct CornerTerms<'a> {
-    pub s: &'a mut [Vec3],
-    pub t: &'a mut [Vec3],
+    pub directions: Option<[&'a mut [Vec3]; 2]>,
     pub angle: &'a mut [f32],
 }
 
@@ -31,10 +31,31 @@ pub(crate) fn compute(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[V
                 .chunks(LANES)
                 .zip(derivatives[0].chunks(LANES))
                 .zip(derivatives[1].chunks(LANES));
-            let corners = terms.s.chunks_mut(3 * LANES).zip(terms.t.chunks_mut(3 * LANES));
-            let corners = corners.zip(terms.angle.chunks_mut(3 * LANES));
-            for (((ids, tangent_s), tangent_t), ((s, t), angle)) in triangles.zip(corners) {
-                batch(attributes, ids, [tangent_s, tangent_t], CornerTerms { s, t, angle });
+            let angles = terms.angle.chunks_mut(3 * LANES);
+            match terms.directions {
+                Some([s, t]) => {
+                    let corners = s.chunks_mut(3 * LANES).zip(t.chunks_mut(3 * LANES)).zip(angles);
+                    for (((ids, tangent_s), tangent_t), ((s, t), angle)) in triangles.zip(corners) {
+                        let directions = Some([s, t]);
+                        batch(
+                            attributes,
+                            ids,
+                            [tangent_s, tangent_t],
+                            CornerTerms { directions, angle },
+                        );
+                    }
+                }
+                None => {
+                    for (((ids, tangent_s), tangent_t), angle) in triangles.zip(angles) {
+                        let directions = None;
+                        batch(
+                            attributes,
+                            ids,
+                            [tangent_s, tangent_t],
+                            CornerTerms { directions, angle },
+                        );
+                    }
+                }
             }
         },
     );
@@ -42,7 +63,7 @@ pub(crate) fn compute(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[V
 
 /// One batch of at most [`LANES`] triangles.
 #[inline(always)]
-fn batch(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[Vec3]; 2], terms: CornerTerms) {
+fn batch(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[Vec3]; 2], mut terms: CornerTerms) {
     // `[corner][component][lane]`, and each triangle's derivatives.
     let mut positions = [[[0.0; LANES]; 3]; 3];
     let mut normals = [[[0.0; LANES]; 3]; 3];
@@ -71,15 +92,19 @@ fn batch(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[Vec3]; 2], ter
                 sub(lane(&positions[next], i), corner),
             );
             *cosine = projected_cosine(edges.0, edges.1, n);
-            for (projected, derivative) in projected.iter_mut().zip(&lanes_of_derivatives) {
-                set_lane3(projected, i, project_normalized(lane(derivative, i), n));
+            if terms.directions.is_some() {
+                for (projected, derivative) in projected.iter_mut().zip(&lanes_of_derivatives) {
+                    set_lane3(projected, i, project_normalized(lane(derivative, i), n));
+                }
             }
         }
         let mut angles = [0.0; LANES];
         acos_lanes(&cosines, &mut angles, lanes);
         for (i, &angle) in angles[..ids.len()].iter().enumerate() {
-            terms.s[3 * i + k] = lane(&projected[0], i);
-            terms.t[3 * i + k] = lane(&projected[1], i);
+            if let Some([s, t]) = &mut terms.directions {
+                s[3 * i + k] = lane(&projected[0], i);
+                t[3 * i + k] = lane(&projected[1], i);
+            }
             terms.angle[3 * i + k] = angle;
         }
     }

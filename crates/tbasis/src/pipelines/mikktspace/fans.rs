@@ -20,10 +20,11 @@
 
 use super::components::{self, find, union, Settled};
 use super::faces::ORIENT_PRESERVING;
-use super::tspace::{self, Inputs, Space, Written};
+use super::tspace::{self, Directions, Inputs, Space, Written};
 use crate::kernel::error::Error;
 use crate::kernel::parallel;
-use crate::kernel::vector::Vec3;
+use crate::kernel::simd;
+use crate::kernel::vector::{normal, project_normalized, Vec3};
 
 /// Up to this many corners at a welded vertex, the fan's arrays are on the stack and each edge
 /// finds its partner by scanning the fan; past it, they are on the heap and the fan's edges are
@@ -84,7 +85,11 @@ pub(crate) fn evaluate_on_ranges(
     let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
     let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
     super::write_in_ranges(ends, inputs.order, outputs, parts, |out, ((first, &end), counts)| {
-        *counts = evaluate(inputs, ids, &lists, first..end, &mut Fan::default(), out)?;
+        // Compiled for the widest SIMD path, for the projections ([`project`]).
+        *counts = simd::run(
+            #[inline(always)]
+            || evaluate(inputs, ids, &lists, first..end, &mut Fan::default(), out),
+        )?;
         Ok(())
     })?;
     let mut settled = Settled::default();
@@ -93,12 +98,13 @@ pub(crate) fn evaluate_on_ranges(
 }
 
 /// A fan's arrays, one element per corner: its two other welded vertices (the edge leaving the
-/// vertex, the edge reaching it), its parent in the union-find, its group's sum and whether the
+/// vertex, the edge reaching it), its projected directions ([`Inputs::directions`]), its parent in the union-find, its group's sum and whether the
 /// group's directions could part; the corners set aside for the comparison, as (root, corner) by
 /// their places in the fan; a group's members.
 struct Arrays<'a> {
     leaving: &'a mut [u32],
     reaching: &'a mut [u32],
+    directions: &'a mut [[Vec3; 2]],
     parent: &'a mut [u32],
     sums: &'a mut [Vec3],
     may_part: &'a mut [bool],
@@ -111,6 +117,7 @@ struct Arrays<'a> {
 struct Small {
     leaving: [u32; SCAN_LIMIT],
     reaching: [u32; SCAN_LIMIT],
+    directions: [[Vec3; 2]; SCAN_LIMIT],
     parent: [u32; SCAN_LIMIT],
     sums: [Vec3; SCAN_LIMIT],
     may_part: [bool; SCAN_LIMIT],
@@ -124,6 +131,7 @@ struct Small {
 struct Fan {
     leaving: Vec<u32>,
     reaching: Vec<u32>,
+    directions: Vec<[Vec3; 2]>,
     parent: Vec<u32>,
     sums: Vec<Vec3>,
     may_part: Vec<bool>,
@@ -135,6 +143,7 @@ struct Fan {
 /// Writes the tangent and orientation of every corner at the welded vertices `vertices` into
 /// `out`; `fan` holds the arrays of fans past [`SCAN_LIMIT`] corners. Returns how many groups
 /// there were, how many went to the pairwise comparison, and how many fans were large.
+#[inline(always)]
 fn evaluate(
     inputs: &Inputs,
     ids: &[[u32; 3]],
@@ -147,6 +156,7 @@ fn evaluate(
     let mut small = Small {
         leaving: [0; SCAN_LIMIT],
         reaching: [0; SCAN_LIMIT],
+        directions: [[[0.0; 3]; 2]; SCAN_LIMIT],
         parent: [0; SCAN_LIMIT],
         sums: [[0.0; 3]; SCAN_LIMIT],
         may_part: [false; SCAN_LIMIT],
@@ -160,6 +170,7 @@ fn evaluate(
             let arrays = Arrays {
                 leaving: &mut small.leaving[..n],
                 reaching: &mut small.reaching[..n],
+                directions: &mut small.directions[..n],
                 parent: &mut small.parent[..n],
                 sums: &mut small.sums[..n],
                 may_part: &mut small.may_part[..n],
@@ -173,6 +184,7 @@ fn evaluate(
             let arrays = Arrays {
                 leaving: &mut fan.leaving[..n],
                 reaching: &mut fan.reaching[..n],
+                directions: &mut fan.directions[..n],
                 parent: &mut fan.parent[..n],
                 sums: &mut fan.sums[..n],
                 may_part: &mut fan.may_part[..n],
@@ -189,6 +201,7 @@ fn evaluate(
 
 /// One welded vertex's `corners`, in ascending order; `edges` (room for two per corner) when
 /// there are more than [`SCAN_LIMIT`].
+#[inline(always)]
 fn evaluate_fan(
     inputs: &Inputs,
     ids: &[[u32; 3]],
@@ -202,6 +215,7 @@ fn evaluate_fan(
     let Arrays {
         leaving,
         reaching,
+        directions,
         parent,
         sums,
         may_part,
@@ -214,6 +228,7 @@ fn evaluate_fan(
         reaching[i] = ids[g][(k + 2) % 3];
         parent[i] = i as u32;
     }
+    project(inputs, corners, directions);
 
     // 1. Each pair of edges at the vertex joins its two corners when their triangles agree in
     //    orientation: the k-th edge leaving toward w with the k-th reaching from w.
@@ -257,15 +272,14 @@ fn evaluate_fan(
     let mut groups = 0;
     for i in 0..n {
         let root = find(parent, i);
-        let (c, r) = (corners[i] as usize, corners[root] as usize);
         if root == i {
             groups += 1;
             sums[i] = [0.0; 3];
-            may_part[i] = components::may_part(inputs, c, c);
-        } else if components::may_part(inputs, r, c) {
+            may_part[i] = components::may_part(directions[i], None);
+        } else if components::may_part(directions[root], Some(directions[i])) {
             may_part[root] = true;
         }
-        <Vec3 as Space>::add(&mut sums[root], inputs, c);
+        <Vec3 as Space>::add_with(&mut sums[root], inputs, corners[i] as usize, directions[i]);
     }
 
     // 3. Each corner's tangent: its group's sum normalized; where the directions could part,
@@ -299,6 +313,50 @@ fn evaluate_fan(
     Ok([groups, compared])
 }
 
+/// Lanes of [`project`]: one AVX2 register.
+const LANES: usize = 8;
+
+/// Each corner's projected directions ([`Inputs::directions`]), [`LANES`] corners at a time in
+/// loops that compile to SIMD under [`simd::run`]: the corners share the vertex's normal, and
+/// every lane runs the same IEEE operations as the scalar projection, so the bits are the same.
+#[inline(always)]
+fn project(inputs: &Inputs, corners: &[u32], directions: &mut [[Vec3; 2]]) {
+    let Directions::Projected {
+        attributes,
+        ids,
+        derivatives,
+    } = inputs.directions
+    else {
+        for (d, &c) in directions.iter_mut().zip(corners) {
+            *d = inputs.directions(c as usize);
+        }
+        return;
+    };
+    let Some(&first) = corners.first() else {
+        return;
+    };
+    let n = normal(&attributes[ids[first as usize / 3][first as usize % 3] as usize]);
+    for (corners, directions) in corners.chunks(LANES).zip(directions.chunks_mut(LANES)) {
+        // `[s or t][component][lane]`.
+        let mut lanes = [[[0.0f32; LANES]; 3]; 2];
+        for (i, &c) in corners.iter().enumerate() {
+            for (lanes, derivatives) in lanes.iter_mut().zip(derivatives) {
+                let d = derivatives[c as usize / 3];
+                (lanes[0][i], lanes[1][i], lanes[2][i]) = (d[0], d[1], d[2]);
+            }
+        }
+        for lanes in &mut lanes {
+            for i in 0..LANES {
+                let [x, y, z] = project_normalized([lanes[0][i], lanes[1][i], lanes[2][i]], n);
+                (lanes[0][i], lanes[1][i], lanes[2][i]) = (x, y, z);
+            }
+        }
+        for (i, d) in directions.iter_mut().enumerate() {
+            *d = lanes.map(|l| [l[0][i], l[1][i], l[2][i]]);
+        }
+    }
+}
+
 impl Fan {
     /// Room for a fan of `n` corners.
     fn reserve(&mut self, n: usize) -> Result<(), Error> {
@@ -311,6 +369,7 @@ impl Fan {
         }
         grow(&mut self.leaving, n)?;
         grow(&mut self.reaching, n)?;
+        grow(&mut self.directions, n)?;
         grow(&mut self.parent, n)?;
         grow(&mut self.sums, n)?;
         grow(&mut self.may_part, n)?;

@@ -35,6 +35,7 @@ use self::corner_terms::CornerTerms;
 use self::faces::GROUP_WITH_ANY;
 use self::groups::Groups;
 use self::neighbors::EdgeScratch;
+use self::tspace::Directions;
 use self::tspace::Inputs;
 use self::weld::WeldScratch;
 use crate::kernel::error::Error;
@@ -155,20 +156,19 @@ fn edge_scratch<'a>(arena: &mut Arena<'a>, corner_count: usize) -> Result<EdgeSc
     })
 }
 
-/// Grouping's and evaluation's memory: each corner's terms, the groups, and grouping's search
-/// stack (the terms are computed while the groups are built).
-type GroupScratch<'a> = (CornerTerms<'a>, Groups<'a>, &'a mut [u32]);
+/// Grouping's and evaluation's memory: each corner's terms (projected dP/ds and dP/dt, angle),
+/// the groups, and grouping's search stack (the terms are computed while the groups are built).
+type GroupScratch<'a> = (([&'a mut [Vec3]; 2], &'a mut [f32]), Groups<'a>, &'a mut [u32]);
 
 /// Takes [`GroupScratch`] for `triangles` good triangles, laid out so that the pages it uses are
 /// ones the weld has already touched (the terms and the groups' members entirely, the rest of the
 /// groups' arrays as far as there are groups, the stack as deep as a search goes): first use of
 /// memory costs a page fault, a large part of a call's time.
 fn group_scratch<'a>(arena: &mut Arena<'a>, triangles: usize) -> Result<GroupScratch<'a>, Error> {
-    let terms = CornerTerms {
-        s: arena.take(3 * triangles)?,
-        t: arena.take(3 * triangles)?,
-        angle: arena.take(3 * triangles)?,
-    };
+    let terms = (
+        [arena.take(3 * triangles)?, arena.take(3 * triangles)?],
+        arena.take(3 * triangles)?,
+    );
     let groups = Groups {
         corners: arena.take(3 * triangles)?,
         starts: arena.take(3 * triangles + 1)?,
@@ -481,25 +481,37 @@ fn solve<S: tspace::Space>(
     //     which runs on one, goes beside the terms, which take the others.
     let mut phase = Arena::Carve(&mut *b.phase);
     let (terms, mut groups, stack) = group_scratch(&mut phase, triangles)?;
-    let CornerTerms { s, t, angle } = terms;
+    let ([s, t], angle) = terms;
     let (s, t, angle) = (&mut s[..3 * good], &mut t[..3 * good], &mut angle[..3 * good]);
     let derivatives = [&b.tangent_s[..good], &b.tangent_t[..good]];
-    let mut weigh = |threads: u32| {
+    // The terms, with the directions when `stored` is given.
+    let mut weigh = |threads: u32, stored: Option<[&mut [Vec3]; 2]>| {
         let ranges = parallel::ranges(threads, good);
         let ends = ranges.ends();
-        let parts = parallel::split(&mut *s, ends, 3)
-            .zip(parallel::split(&mut *t, ends, 3))
-            .zip(parallel::split(&mut *angle, ends, 3));
-        parallel::run_ranges(ends, parts, |first, ((s, t), angle)| {
+        let mut stored = stored.map(|[s, t]| parallel::split(s, ends, 3).zip(parallel::split(t, ends, 3)));
+        let parts = parallel::split(&mut *angle, ends, 3)
+            .map(|angle| (stored.as_mut().and_then(Iterator::next).map(|(s, t)| [s, t]), angle));
+        parallel::run_ranges(ends, parts, |first, (directions, angle)| {
             let range = first..first + angle.len() / 3;
             let derivatives = derivatives.map(|d| &d[range.clone()]);
-            corner_terms::compute(packed, &ids[range], derivatives, CornerTerms { s, t, angle });
+            corner_terms::compute(packed, &ids[range], derivatives, CornerTerms { directions, angle });
         });
     };
     if let (None, Some(tangents)) = (&extras, S::tangents(&mut *spaces)) {
         // 7 to 9 at once: fan by fan ([`fans`]) or over the mesh ([`components`]), mikktspace.c's
-        // search only at the welded vertices of GROUP_WITH_ANY triangles.
-        weigh(threads);
+        // search only at the welded vertices of GROUP_WITH_ANY triangles. Fan by fan, each
+        // corner's directions are read once, so they are projected then rather than stored.
+        let directions = if by_fans {
+            weigh(threads, None);
+            Directions::Projected {
+                attributes: packed,
+                ids,
+                derivatives,
+            }
+        } else {
+            weigh(threads, Some([&mut *s, &mut *t]));
+            Directions::Stored { s, t }
+        };
         let near = if by_fans {
             None
         } else {
@@ -517,8 +529,7 @@ fn solve<S: tspace::Space>(
         let inputs = Inputs {
             flags: &b.flags[..good],
             order,
-            s,
-            t,
+            directions,
             angle,
             magnitudes: &[],
             threshold: tspace::threshold_cosine(180.0),
@@ -546,9 +557,9 @@ fn solve<S: tspace::Space>(
     let (neighbors, flags, assigned) = (&b.neighbors[..good], &mut b.flags[..good], &mut b.assigned[..good]);
     let mut group = || groups::build(ids, neighbors, flags, assigned, (&mut groups, &mut *stack), |_| true);
     let group_count = if ranges.ends().len() > 1 {
-        parallel::join(|| weigh(threads - 1), group).1
+        parallel::join(|| weigh(threads - 1, Some([&mut *s, &mut *t])), group).1
     } else {
-        weigh(threads);
+        weigh(threads, Some([&mut *s, &mut *t]));
         group()
     };
 
@@ -561,8 +572,7 @@ fn solve<S: tspace::Space>(
     let inputs = Inputs {
         flags: &b.flags[..good],
         order,
-        s,
-        t,
+        directions: Directions::Stored { s, t },
         angle,
         magnitudes: extras.as_deref().map_or(&[], |e| &e.magnitudes[..good]),
         threshold: extras

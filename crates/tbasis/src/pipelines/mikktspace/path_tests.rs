@@ -6,6 +6,8 @@ use super::{components, compute, scratch_bytes, GroupRoute, Routes, WeldPath};
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::Options;
 use crate::kernel::report::Report;
+use crate::kernel::simd::tests::PINNED;
+use crate::kernel::simd::Path;
 use tbasis_test_support::{load, needs, scenes};
 
 /// The routes `compute` took on one mesh.
@@ -43,6 +45,44 @@ fn the_benchmark_torus_welds_by_value_and_groups_fan_by_fan() {
         settled.components > 0 && settled.compared == 0 && settled.searched == 0,
         "{settled:?}"
     );
+}
+
+/// The fans project their corners' directions in SIMD lanes ([`super::fans`]): every path this
+/// CPU supports gives the baseline's bits on the torus, which takes the fan route, on one thread
+/// and two.
+#[test]
+fn the_fans_give_the_same_bits_on_every_simd_path() {
+    let torus = scenes::build(&scenes::SceneSpec::torus(20_000));
+    let mesh = Mesh::new(&torus.positions[..], &torus.normals[..])
+        .with_texcoords(&torus.texcoords[..])
+        .with_indices(&torus.indices[..]);
+    let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
+        .into_iter()
+        .filter(|p| p.supported())
+        .collect();
+    if paths.len() < 2 {
+        assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
+        eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
+    }
+    for threads in [1, 2] {
+        let options = Options::mikktspace().with_threads(threads);
+        let along = |path: Path| {
+            PINNED.with(|p| p.set(Some(path)));
+            let mut bytes = vec![0u8; scratch_bytes(mesh.vertex_count(), mesh.corner_count()).expect("a size")];
+            let (buffers, routes) = compute(&mesh, &options, &mut bytes, &mut Report::default()).expect("a result");
+            PINNED.with(|p| p.set(None));
+            assert!(matches!(routes.groups, GroupRoute::Fans(_)), "{:?}", routes.groups);
+            let bits: Vec<u32> = buffers.tangents.iter().flatten().map(|x| x.to_bits()).collect();
+            (bits, buffers.orientation.to_vec())
+        };
+        let baseline = along(Path::Baseline);
+        for &path in &paths[1..] {
+            assert!(
+                along(path) == baseline,
+                "{path:?} differs from the baseline on {threads} threads"
+            );
+        }
+    }
 }
 
 #[test]

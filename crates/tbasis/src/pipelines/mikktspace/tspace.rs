@@ -11,7 +11,7 @@
 
 use super::faces::GROUP_WITH_ANY;
 use crate::kernel::error::Error;
-use crate::kernel::vector::{add, dot, equal, normalize_if_not_zero, scale, Vec3};
+use crate::kernel::vector::{add, dot, equal, normal, normalize_if_not_zero, project_normalized, scale, Packed, Vec3};
 
 /// Cosine of an angular threshold in degrees, as mikktspace.c computes it in float
 /// (`genTangSpace`): -1 for the default 180 degrees.
@@ -26,10 +26,9 @@ pub(crate) struct Inputs<'a> {
     pub flags: &'a [u8],
     /// The triangle each good triangle is.
     pub order: &'a [u32],
-    /// Per corner `3 g + k` of good triangle `g`: its projected unit dP/ds and dP/dt and its
-    /// corner angle ([`super::corner_terms`]).
-    pub s: &'a [Vec3],
-    pub t: &'a [Vec3],
+    /// Per corner `3 g + k` of good triangle `g`: its projected unit dP/ds and dP/dt
+    /// ([`Inputs::directions`]) and its corner angle ([`super::corner_terms`]).
+    pub directions: Directions<'a>,
     pub angle: &'a [f32],
     /// Per good triangle: |dP/ds| and |dP/dt| over the texture area (read by [`Space::Full`]
     /// sums only).
@@ -41,12 +40,54 @@ pub(crate) struct Inputs<'a> {
     pub face_of: Option<&'a [u32]>,
 }
 
+/// Where each corner's projected unit dP/ds and dP/dt (`EvalTspace`'s `vOs` and `vOt`) come from.
+#[derive(Clone, Copy)]
+pub(crate) enum Directions<'a> {
+    /// Stored per corner by [`super::corner_terms`].
+    Stored { s: &'a [Vec3], t: &'a [Vec3] },
+    /// Projected when read, as [`super::corner_terms`] projects them: from each good triangle's
+    /// welded vertices `ids`, their `attributes` (the normal) and the triangle's unit dP/ds and
+    /// dP/dt `derivatives`. For a pass that reads each corner once or twice, this saves writing
+    /// and reading back 24 bytes per corner, and the first touch of their memory.
+    Projected {
+        attributes: &'a [Packed],
+        ids: &'a [[u32; 3]],
+        derivatives: [&'a [Vec3]; 2],
+    },
+}
+
+impl Inputs<'_> {
+    /// Corner `c`'s projected unit dP/ds and dP/dt: the triangle's unit derivatives with their
+    /// components along the corner's normal removed, normalized (`EvalTspace`).
+    #[inline(always)]
+    pub fn directions(&self, c: usize) -> [Vec3; 2] {
+        match self.directions {
+            Directions::Stored { s, t } => [s[c], t[c]],
+            Directions::Projected {
+                attributes,
+                ids,
+                derivatives,
+            } => {
+                let (g, k) = (c / 3, c % 3);
+                let n = normal(&attributes[ids[g][k] as usize]);
+                derivatives.map(|d| project_normalized(d[g], n))
+            }
+        }
+    }
+}
+
 /// What a corner's sub-group sum holds: the tangent alone, or all of `setTSpace`'s outputs.
 pub(crate) trait Space: Copy + Send + Sync {
     /// The running sum over a sub-group's usable corners.
     type Sum: Default;
-    /// Adds corner `c` (of good triangle `c / 3`), weighted by its angle (`EvalTspace`).
-    fn add(sum: &mut Self::Sum, inputs: &Inputs, c: usize);
+    /// Adds corner `c` (of good triangle `c / 3`), whose projected directions are `directions`,
+    /// weighted by its angle (`EvalTspace`).
+    fn add_with(sum: &mut Self::Sum, inputs: &Inputs, c: usize, directions: [Vec3; 2]);
+    /// [`Space::add_with`] with the directions read from `inputs`.
+    #[inline(always)]
+    fn add(sum: &mut Self::Sum, inputs: &Inputs, c: usize) {
+        Self::add_with(sum, inputs, c, inputs.directions(c));
+    }
     /// The sub-group's space from its sum.
     fn finish(sum: Self::Sum) -> Self;
     /// The spaces as tangents alone, when they are nothing more.
@@ -56,8 +97,8 @@ pub(crate) trait Space: Copy + Send + Sync {
 impl Space for Vec3 {
     type Sum = Vec3;
     #[inline(always)]
-    fn add(sum: &mut Vec3, inputs: &Inputs, c: usize) {
-        *sum = add(*sum, scale(inputs.angle[c], inputs.s[c]));
+    fn add_with(sum: &mut Vec3, inputs: &Inputs, c: usize, [s, _]: [Vec3; 2]) {
+        *sum = add(*sum, scale(inputs.angle[c], s));
     }
     #[inline(always)]
     fn finish(sum: Vec3) -> Vec3 {
@@ -106,11 +147,11 @@ impl Space for Full {
     /// The sums of angle * dP/ds, angle * dP/dt, angle * |dP/ds|, angle * |dP/dt| and angle.
     type Sum = (Full, f32);
     #[inline(always)]
-    fn add((sum, angles): &mut (Full, f32), inputs: &Inputs, c: usize) {
+    fn add_with((sum, angles): &mut (Full, f32), inputs: &Inputs, c: usize, [s, t]: [Vec3; 2]) {
         let angle = inputs.angle[c];
         let [mag_s, mag_t] = inputs.magnitudes[c / 3];
-        sum.s = add(sum.s, scale(angle, inputs.s[c]));
-        sum.t = add(sum.t, scale(angle, inputs.t[c]));
+        sum.s = add(sum.s, scale(angle, s));
+        sum.t = add(sum.t, scale(angle, t));
         sum.mag_s += angle * mag_s;
         sum.mag_t += angle * mag_t;
         *angles += angle;
@@ -191,7 +232,6 @@ pub(crate) fn evaluate_group<S: Space>(
 ) -> Result<(), Error> {
     let corner = |j: usize| corners[j] as usize;
     let good = |j: usize| corners[j] / 3;
-    let (s, t) = (inputs.s, inputs.t);
     let usable = |j: usize| inputs.flags[good(j) as usize] & GROUP_WITH_ANY == 0;
     let write = |j: usize, space: S, out: &mut Written<S>| out.write(inputs.order, corner(j), space, preserving);
     let count = corners.len();
@@ -201,9 +241,10 @@ pub(crate) fn evaluate_group<S: Space>(
     let (mut sum, mut half_s, mut half_t) = (S::Sum::default(), HalfSpace::default(), HalfSpace::default());
     for j in (0..count).filter(|&j| usable(j)) {
         let c = corner(j);
-        half_s.admit(s[c]);
-        half_t.admit(t[c]);
-        S::add(&mut sum, inputs, c);
+        let directions = inputs.directions(c);
+        half_s.admit(directions[0]);
+        half_t.admit(directions[1]);
+        S::add_with(&mut sum, inputs, c, directions);
     }
     if half_s.holds && half_t.holds && inputs.threshold <= -1.0 {
         let space = S::finish(sum);
@@ -215,13 +256,15 @@ pub(crate) fn evaluate_group<S: Space>(
 
     // Some directions may lie past the threshold: compare every pair, as mikktspace.c does. Two
     // triangles of one face, or one without a usable derivative, always share a sub-group.
-    let within = |terms: &[Vec3], j: usize, k: usize| dot(terms[corner(j)], terms[corner(k)]) > inputs.threshold;
+    let within = |j: usize, k: usize| {
+        let ([s_j, t_j], [s_k, t_k]) = (inputs.directions(corner(j)), inputs.directions(corner(k)));
+        dot(s_j, s_k) > inputs.threshold && dot(t_j, t_k) > inputs.threshold
+    };
     let face = |j: usize| {
         let triangle = inputs.order[good(j) as usize];
         inputs.face_of.map_or(triangle, |face_of| face_of[triangle as usize])
     };
-    let member =
-        |j: usize, k: usize| !usable(j) || !usable(k) || face(j) == face(k) || (within(s, j, k) && within(t, j, k));
+    let member = |j: usize, k: usize| !usable(j) || !usable(k) || face(j) == face(k) || within(j, k);
     let mut subgroups: Vec<(Vec<usize>, S)> = Vec::new();
     subgroups.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
     for j in 0..count {
