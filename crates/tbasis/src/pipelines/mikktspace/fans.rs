@@ -345,10 +345,9 @@ fn project(inputs: &Inputs, corners: &[u32], directions: &mut [[Vec3; 2]]) {
                 (lanes[0][i], lanes[1][i], lanes[2][i]) = (d[0], d[1], d[2]);
             }
         }
-        for lanes in &mut lanes {
-            for i in 0..LANES {
-                let [x, y, z] = project_normalized([lanes[0][i], lanes[1][i], lanes[2][i]], n);
-                (lanes[0][i], lanes[1][i], lanes[2][i]) = (x, y, z);
+        for [xs, ys, zs] in &mut lanes {
+            for ((x, y), z) in xs.iter_mut().zip(ys.iter_mut()).zip(zs.iter_mut()) {
+                [*x, *y, *z] = project_normalized([*x, *y, *z], n);
             }
         }
         for (i, d) in directions.iter_mut().enumerate() {
