@@ -38,7 +38,7 @@ pub(crate) fn good_first(marks: &[u8], order: &mut [u32]) -> usize {
     good
 }
 
-/// Writes, for each good triangle `g` (triangle `order[g]`), its unit dP/ds and dP/dt signed by
+/// Writes, for each good triangle `g` (welded vertices `ids[g]`), its unit dP/ds and dP/dt signed by
 /// the UV orientation (zero where they vanish), its flags (`InitTriInfo`, eq. 18 and 19) and, when
 /// asked, |dP/ds| and |dP/dt| over the texture area (`fMagS`, `fMagT`; only usable triangles'
 /// are ever read). A
@@ -46,8 +46,7 @@ pub(crate) fn good_first(marks: &[u8], order: &mut [u32]) -> usize {
 /// order, so the SIMD paths give its bits ([`crate::kernel::simd`]).
 pub(crate) fn derivatives(
     attributes: &[Packed],
-    welded: &[u32],
-    order: &[u32],
+    ids: &[[u32; 3]],
     tangent_s: &mut [Vec3],
     tangent_t: &mut [Vec3],
     flags: &mut [u8],
@@ -60,11 +59,9 @@ pub(crate) fn derivatives(
                 .chunks_mut(LANES)
                 .zip(tangent_t.chunks_mut(LANES))
                 .zip(flags.chunks_mut(LANES));
-            for (batch, (order, ((s, t), flags))) in order.chunks(LANES).zip(outputs).enumerate() {
-                let magnitudes = magnitudes
-                    .as_deref_mut()
-                    .map(|m| &mut m[batch * LANES..][..order.len()]);
-                derivatives_batch(attributes, welded, order, [s, t], flags, magnitudes);
+            for (batch, (ids, ((s, t), flags))) in ids.chunks(LANES).zip(outputs).enumerate() {
+                let magnitudes = magnitudes.as_deref_mut().map(|m| &mut m[batch * LANES..][..ids.len()]);
+                derivatives_batch(attributes, ids, [s, t], flags, magnitudes);
             }
         },
     );
@@ -74,8 +71,7 @@ pub(crate) fn derivatives(
 #[inline(always)]
 fn derivatives_batch(
     attributes: &[Packed],
-    welded: &[u32],
-    order: &[u32],
+    ids: &[[u32; 3]],
     out: [&mut [Vec3]; 2],
     flags: &mut [u8],
     magnitudes: Option<&mut [[f32; 2]]>,
@@ -83,9 +79,9 @@ fn derivatives_batch(
     // `[corner][component][lane]`.
     let mut positions = [[[0.0; LANES]; 3]; 3];
     let mut texcoords = [[[0.0; LANES]; 2]; 3];
-    for (i, &t) in order.iter().enumerate() {
-        for k in 0..3 {
-            let vertex = &attributes[welded[3 * t as usize + k] as usize];
+    for (i, ids) in ids.iter().enumerate() {
+        for (k, &id) in ids.iter().enumerate() {
+            let vertex = &attributes[id as usize];
             set_lane3(&mut positions[k], i, position(vertex));
             let [u, v] = texcoord(vertex);
             (texcoords[k][0][i], texcoords[k][1][i]) = (u, v);
@@ -95,7 +91,7 @@ fn derivatives_batch(
     let mut lane_flags = [0u32; LANES];
     let mut lane_magnitudes = [[0.0f32; 2]; LANES];
     let [t1, t2, t3] = &texcoords;
-    for i in 0..lanes_in_use(order.len()) {
+    for i in 0..lanes_in_use(ids.len()) {
         let [v1, v2, v3] = [0, 1, 2].map(|k| lane3(&positions[k], i).to_array());
         let (t21x, t21y) = (t2[0][i] - t1[0][i], t2[1][i] - t1[1][i]);
         let (t31x, t31y) = (t3[0][i] - t1[0][i], t3[1][i] - t1[1][i]);
@@ -130,13 +126,13 @@ fn derivatives_batch(
         lane_flags[i] = any | orientation;
     }
     let [s, t] = out;
-    for i in 0..order.len() {
+    for i in 0..ids.len() {
         s[i] = lane3(&lanes_out[0], i).to_array();
         t[i] = lane3(&lanes_out[1], i).to_array();
         flags[i] = lane_flags[i] as u8;
     }
     if let Some(magnitudes) = magnitudes {
-        magnitudes.copy_from_slice(&lane_magnitudes[..order.len()]);
+        magnitudes.copy_from_slice(&lane_magnitudes[..ids.len()]);
     }
 }
 

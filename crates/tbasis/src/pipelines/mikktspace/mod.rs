@@ -414,36 +414,55 @@ fn solve<S: tspace::Space>(
             *id = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
         }
     });
-    let path = match by_value {
-        Some(_) => settle_last_run(attributes, threads, b, welded_count, good)?,
-        None => WeldPath::ReplayedForAttributes,
-    };
     let packed = &b.attributes[..welded_count];
     let order = &b.order[..good];
     let ids = &b.ids[..good];
 
-    // 5. Each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19), and
-    // 6. the good triangle across each edge (BuildNeighborsFast). Neither reads what the other
-    //    writes: with two threads or more the pairing, which runs on one, goes beside the
-    //    derivatives, which take the others.
+    // The last-run check (after a weld by value: [`last_run_is_trivial`]), and
+    // 5. each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19), and
+    // 6. the good triangle across each edge (BuildNeighborsFast). The derivatives read nothing
+    //    the other two write: with two threads or more, the check, or else the pairing, each
+    //    mostly on one thread, goes beside the derivatives, which take the others.
     let ranges = parallel::ranges(threads, good);
-    let fans_may_do = extras.is_none() && path == WeldPath::ByValue && S::tangents(&mut *spaces).is_some();
+    let triangle_interface = extras.is_none() && S::tangents(&mut *spaces).is_some();
     let (tangent_s, tangent_t, flags) = (&mut b.tangent_s[..good], &mut b.tangent_t[..good], &mut b.flags[..good]);
-    let welded = &*b.welded;
-    let magnitudes = extras.as_deref_mut().map(|e| &mut e.magnitudes[..good]);
-    let derivatives = move |threads: u32| {
+    let mut magnitudes = extras.as_deref_mut().map(|e| &mut e.magnitudes[..good]);
+    let mut derivatives = |threads: u32| {
         let ranges = parallel::ranges(threads, good);
         let ends = ranges.ends();
-        let mut magnitudes = magnitudes.map(|m| parallel::split(m, ends, 1));
-        let parts = parallel::split(tangent_s, ends, 1)
-            .zip(parallel::split(tangent_t, ends, 1))
-            .zip(parallel::split(flags, ends, 1))
+        let mut magnitudes = magnitudes.as_deref_mut().map(|m| parallel::split(m, ends, 1));
+        let parts = parallel::split(&mut *tangent_s, ends, 1)
+            .zip(parallel::split(&mut *tangent_t, ends, 1))
+            .zip(parallel::split(&mut *flags, ends, 1))
             .map(|part| (part, magnitudes.as_mut().and_then(Iterator::next)));
         parallel::run_ranges(ends, parts, |first, (((s, t), flags), magnitudes)| {
             let end = first + flags.len();
-            faces::derivatives(packed, welded, &order[first..end], s, t, flags, magnitudes)
+            faces::derivatives(packed, &ids[first..end], s, t, flags, magnitudes)
         });
     };
+    let mut weld_buffers = WeldBuffers {
+        welded: &mut *b.welded,
+        source: &mut *b.source,
+        values: &mut *b.values,
+        table: &mut *b.table,
+        phase: &mut *b.phase,
+    };
+    let mut check = |threads: u32| last_run_is_trivial(attributes, threads, &mut weld_buffers, packed, ids);
+    let checked_beside = by_value.is_some() && ranges.ends().len() > 1;
+    let trivial = match by_value {
+        Some(_) if checked_beside => Some(parallel::join(|| check(1), || derivatives(threads - 1)).0?),
+        Some(_) => Some(check(threads)?),
+        None => None,
+    };
+    let path = match trivial {
+        Some(true) => WeldPath::ByValue,
+        Some(false) => {
+            replay_for_last_run(attributes, threads, &mut weld_buffers)?;
+            WeldPath::ReplayedForLastRun
+        }
+        None => WeldPath::ReplayedForAttributes,
+    };
+    let fans_may_do = triangle_interface && path == WeldPath::ByValue;
     let values = (path != WeldPath::ByValue).then_some(&b.values[..welded_count]);
     let (phase, neighbors) = (&mut *b.phase, &mut b.neighbors[..good]);
     let mut pairing = move || -> Result<(), Error> {
@@ -455,10 +474,10 @@ fn solve<S: tspace::Space>(
     };
     // Taken fan by fan ([`fans`]), the groups need no pairing of every edge first, unless a
     // GROUP_WITH_ANY triangle calls for the search.
-    let paired_beside = ranges.ends().len() > 1 && !fans_may_do;
+    let paired_beside = !checked_beside && ranges.ends().len() > 1 && !fans_may_do;
     if paired_beside {
         parallel::join(|| derivatives(threads - 1), &mut pairing).1?;
-    } else {
+    } else if !checked_beside {
         derivatives(threads);
     }
     let by_fans = fans_may_do && b.flags[..good].iter().all(|&f| f & GROUP_WITH_ANY == 0);
@@ -734,35 +753,53 @@ fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
     value_weld::weld(attributes, b.welded, class, b.source, memory)
 }
 
-/// After a weld by value: whether the last run of the edge sort can be left out ([`last_run`]);
-/// if not, replays the splitting to find every welded vertex's index, into `values` (the weld's
-/// numbering is the same either way). Returns how the weld was done.
-fn settle_last_run(
+/// After a weld by value: whether the last run of the edge sort can be left out ([`last_run`]),
+/// from the good triangles' welded vertices `ids` and the welded vertices' attributes `packed`.
+fn last_run_is_trivial(
     attributes: &Attributes,
     threads: u32,
-    b: &mut Buffers,
-    welded_count: usize,
-    good: usize,
-) -> Result<WeldPath, Error> {
-    let (vertex_count, corner_count) = (attributes.mesh.vertex_count(), b.welded.len());
+    b: &mut WeldBuffers,
+    packed: &[Packed],
+    ids: &[[u32; 3]],
+) -> Result<bool, Error> {
+    let (vertex_count, corner_count, welded_count) = (attributes.mesh.vertex_count(), b.welded.len(), packed.len());
     let mut phase = Arena::Carve(&mut *b.phase);
     let memory = last_run::Memory {
         lo: &mut b.values[..welded_count],
         hi: &mut b.table[..welded_count],
         weld: WeldScratch::take(&mut phase, vertex_count, corner_count)?,
     };
-    let ids = &b.ids[..good];
-    let welded_vertices = (&*b.source, &b.attributes[..welded_count]);
-    if last_run::is_trivial(attributes, threads, b.welded, welded_vertices, ids, memory) {
-        return Ok(WeldPath::ByValue);
-    }
+    Ok(last_run::is_trivial(
+        attributes,
+        threads,
+        b.welded,
+        (b.source, packed),
+        ids,
+        memory,
+    ))
+}
+
+/// Where the last run can matter: replays the splitting to find every welded vertex's index,
+/// into `values` (the weld's numbering is the same either way).
+fn replay_for_last_run(attributes: &Attributes, threads: u32, b: &mut WeldBuffers) -> Result<(), Error> {
+    let (vertex_count, corner_count) = (attributes.mesh.vertex_count(), b.welded.len());
     for (c, slot) in b.welded.iter_mut().enumerate() {
         *slot = attributes.mesh.indices.corner(c) as u32;
     }
     let mut phase = Arena::Carve(&mut *b.phase);
     let scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
     weld::weld(attributes, threads, b.welded, b.source, b.values, scratch);
-    Ok(WeldPath::ReplayedForLastRun)
+    Ok(())
+}
+
+/// What the last-run check and the replay work in and rewrite: [`Buffers`]' corners' welded
+/// vertices, each welded vertex's source and index, its table and its phase memory.
+struct WeldBuffers<'w> {
+    welded: &'w mut [u32],
+    source: &'w mut [u32],
+    values: &'w mut [u32],
+    table: &'w mut [u32],
+    phase: &'w mut [u8],
 }
 
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
