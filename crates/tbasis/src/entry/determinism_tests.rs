@@ -243,15 +243,7 @@ fn the_random_meshes_are_split_across_workers() {
 /// (whose workers follow the pinned path): every method and policy, per vertex and per corner.
 #[test]
 fn every_supported_simd_path_gives_the_same_bits() {
-    let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
-        .into_iter()
-        .filter(|p| p.supported())
-        .collect();
-    if paths.len() < 2 {
-        // CI's machines have AVX2: there the comparison must run.
-        assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
-        eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
-    }
+    let paths = simd::tests::supported_paths();
     let policies = [
         DegeneratePolicy::Skip,
         DegeneratePolicy::Inherit,
@@ -277,12 +269,7 @@ fn every_supported_simd_path_gives_the_same_bits() {
                 .with_method(method)
                 .with_policy(policy)
                 .with_threads(threads);
-            let along = |path: Path| {
-                simd::tests::PINNED.with(|p| p.set(Some(path)));
-                let outcome = run(&mesh, &options);
-                simd::tests::PINNED.with(|p| p.set(None));
-                outcome
-            };
+            let along = |path: Path| simd::tests::along(path, || run(&mesh, &options));
             let baseline = along(Path::Baseline);
             for &path in &paths[1..] {
                 assert!(

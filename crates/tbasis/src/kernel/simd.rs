@@ -105,4 +105,26 @@ pub(crate) mod tests {
         /// runs every supported path and compares).
         pub static PINNED: core::cell::Cell<Option<Path>> = const { core::cell::Cell::new(None) };
     }
+
+    /// Every path this CPU supports, the baseline first. Under CI (`CI` set), whose machines have
+    /// AVX2, fails unless there are two to compare; elsewhere says so when there is only one.
+    pub(crate) fn supported_paths() -> Vec<Path> {
+        let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
+            .into_iter()
+            .filter(|p| p.supported())
+            .collect();
+        if paths.len() < 2 {
+            assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
+            eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
+        }
+        paths
+    }
+
+    /// `run` with [`Path::best`] pinned to `path` on this thread.
+    pub(crate) fn along<R>(path: Path, run: impl FnOnce() -> R) -> R {
+        PINNED.with(|p| p.set(Some(path)));
+        let result = run();
+        PINNED.with(|p| p.set(None));
+        result
+    }
 }

@@ -6,7 +6,7 @@ use super::{components, compute, scratch_bytes, GroupRoute, Routes, WeldPath};
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::Options;
 use crate::kernel::report::Report;
-use crate::kernel::simd::tests::PINNED;
+use crate::kernel::simd::tests::{along, supported_paths};
 use crate::kernel::simd::Path;
 use tbasis_test_support::{load, needs, scenes};
 
@@ -56,29 +56,21 @@ fn the_fans_give_the_same_bits_on_every_simd_path() {
     let mesh = Mesh::new(&torus.positions[..], &torus.normals[..])
         .with_texcoords(&torus.texcoords[..])
         .with_indices(&torus.indices[..]);
-    let paths: Vec<Path> = [Path::Baseline, Path::Avx2]
-        .into_iter()
-        .filter(|p| p.supported())
-        .collect();
-    if paths.len() < 2 {
-        assert!(std::env::var_os("CI").is_none(), "CI's CPU lacks AVX2");
-        eprintln!("only the baseline path runs on this CPU: nothing to compare it with");
-    }
+    let paths = supported_paths();
     for threads in [1, 2] {
         let options = Options::mikktspace().with_threads(threads);
-        let along = |path: Path| {
-            PINNED.with(|p| p.set(Some(path)));
-            let mut bytes = vec![0u8; scratch_bytes(mesh.vertex_count(), mesh.corner_count()).expect("a size")];
-            let (buffers, routes) = compute(&mesh, &options, &mut bytes, &mut Report::default()).expect("a result");
-            PINNED.with(|p| p.set(None));
+        let mut bytes = vec![0u8; scratch_bytes(mesh.vertex_count(), mesh.corner_count()).expect("a size")];
+        let mut on_path = |path: Path| {
+            let (buffers, routes) =
+                along(path, || compute(&mesh, &options, &mut bytes, &mut Report::default())).expect("a result");
             assert!(matches!(routes.groups, GroupRoute::Fans(_)), "{:?}", routes.groups);
             let bits: Vec<u32> = buffers.tangents.iter().flatten().map(|x| x.to_bits()).collect();
             (bits, buffers.orientation.to_vec())
         };
-        let baseline = along(Path::Baseline);
+        let baseline = on_path(Path::Baseline);
         for &path in &paths[1..] {
             assert!(
-                along(path) == baseline,
+                on_path(path) == baseline,
                 "{path:?} differs from the baseline on {threads} threads"
             );
         }
