@@ -98,9 +98,9 @@ pub(crate) fn evaluate_on_ranges(
 }
 
 /// A fan's arrays, one element per corner: its two other welded vertices (the edge leaving the
-/// vertex, the edge reaching it), its projected directions ([`Inputs::directions`]), its parent in the union-find, its group's sum and whether the
-/// group's directions could part; the corners set aside for the comparison, as (root, corner) by
-/// their places in the fan; a group's members.
+/// vertex, the edge reaching it), its projected directions ([`Inputs::directions`]), its parent
+/// in the union-find, its group's sum and whether the group's directions could part; the corners
+/// set aside for the comparison, as (root, corner) by their places in the fan; a group's members.
 struct Arrays<'a> {
     leaving: &'a mut [u32],
     reaching: &'a mut [u32],

@@ -43,8 +43,8 @@ pub(crate) struct Memory<'a> {
 
 /// True when the last run of mikktspace.c's edge sort holds at most the two sides of one edge.
 /// `welded` are the corners' welded vertices, `source` a vertex of each welded vertex and `packed`
-/// its attributes, `ids` the
-/// welded vertices of each good triangle (those mikktspace.c pairs the edges of). False when it does not, or when finding out would cost a large part of the full
+/// its attributes, `ids` the welded vertices of each good triangle (those mikktspace.c pairs the
+/// edges of). False when it does not, or when finding out would cost a large part of the full
 /// weld.
 pub(crate) fn is_trivial(
     attributes: &Attributes,

@@ -8,6 +8,9 @@ use crate::kernel::options::Options;
 use crate::kernel::report::Report;
 use crate::kernel::simd::tests::{along, supported_paths};
 use crate::kernel::simd::Path;
+use crate::kernel::test_rng::TestRng;
+use crate::StridedMut;
+use tbasis_test_support::mikktspace_reference::reference_corners;
 use tbasis_test_support::{load, needs, scenes};
 
 /// The routes `compute` took on one mesh.
@@ -60,7 +63,11 @@ fn the_fans_give_the_same_bits_on_every_simd_path() {
     for threads in [1, 2] {
         let options = Options::mikktspace().with_threads(threads);
         let mut bytes = vec![0u8; scratch_bytes(mesh.vertex_count(), mesh.corner_count()).expect("a size")];
+        let mut fill = 0u8;
         let mut on_path = |path: Path| {
+            // Each run starts from other bytes: a corner some run leaves unwritten differs.
+            fill = fill.wrapping_add(0x55);
+            bytes.fill(fill);
             let (buffers, routes) =
                 along(path, || compute(&mesh, &options, &mut bytes, &mut Report::default())).expect("a result");
             assert!(matches!(routes.groups, GroupRoute::Fans(_)), "{:?}", routes.groups);
@@ -75,6 +82,48 @@ fn the_fans_give_the_same_bits_on_every_simd_path() {
             );
         }
     }
+}
+
+/// Where the weld by value holds but the last run can matter, two threads run the last-run check
+/// beside the derivatives and the replay after it: random meshes whose positions repeat, so that
+/// triangles share vertices, give mikktspace.c's bits on one thread and two. Most have 16 to 80
+/// triangles (under `cfg(test)` two workers split 16); every fourth has up to 2016, past the
+/// check's own replay of a few cells, so that only the full replay gives every index.
+#[test]
+fn a_replayed_last_run_gives_mikktspace_cs_bits_on_two_threads() {
+    let mut rng = TestRng(0x5EED_1A57);
+    let mut replayed = 0;
+    for round in 0..400 {
+        let large = round % 4 == 0;
+        let vertex_count = 8 + rng.below(if large { 600 } else { 24 });
+        let mut at = |rng: &mut TestRng| rng.below(6) as f32 * 0.5;
+        let positions: Vec<[f32; 3]> = (0..vertex_count)
+            .map(|_| [at(&mut rng), at(&mut rng), at(&mut rng)])
+            .collect();
+        let normals = vec![[0.0, 0.0, 1.0]; vertex_count];
+        let texcoords: Vec<[f32; 2]> = (0..vertex_count).map(|_| [at(&mut rng), at(&mut rng)]).collect();
+        let triangles = 16 + rng.below(if large { 2000 } else { 64 });
+        let indices: Vec<u32> = (0..3 * triangles).map(|_| rng.below(vertex_count) as u32).collect();
+        let routes = routes_of(&positions, &normals, &texcoords, &indices, false);
+        if routes.weld != WeldPath::ReplayedForLastRun {
+            continue;
+        }
+        replayed += 1;
+        let expected =
+            reference_corners(&positions, &normals, &texcoords, Some(&indices), false).expect("mikktspace.c");
+        let mesh = Mesh::new(&positions[..], &normals[..])
+            .with_texcoords(&texcoords[..])
+            .with_indices(&indices[..]);
+        for threads in [1, 2] {
+            let mut corners = vec![[0.0f32; 4]; indices.len()];
+            let options = Options::mikktspace().with_threads(threads);
+            crate::generate_corners(&mesh, &options, &mut StridedMut::from_slice(&mut corners)).expect("a result");
+            let bits = |frames: &[[f32; 4]]| frames.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert!(bits(&corners) == bits(&expected), "round {round}, {threads} threads");
+        }
+    }
+    // Not vacuous: many meshes replay.
+    assert!(replayed > 50, "{replayed} of 400 replayed the last run");
 }
 
 #[test]

@@ -47,8 +47,9 @@ pub(crate) enum Directions<'a> {
     Stored { s: &'a [Vec3], t: &'a [Vec3] },
     /// Projected when read, as [`super::corner_terms`] projects them: from each good triangle's
     /// welded vertices `ids`, their `attributes` (the normal) and the triangle's unit dP/ds and
-    /// dP/dt `derivatives`. For a pass that reads each corner once or twice, this saves writing
-    /// and reading back 24 bytes per corner, and the first touch of their memory.
+    /// dP/dt `derivatives`. The fans project each corner's once, in lanes, which saves writing
+    /// and reading back 24 bytes per corner, and the first touch of their memory; the pairwise
+    /// comparison of a group, rare, projects them again for every pair it compares.
     Projected {
         attributes: &'a [Packed],
         ids: &'a [[u32; 3]],
