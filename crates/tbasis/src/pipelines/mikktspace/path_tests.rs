@@ -96,7 +96,7 @@ fn a_replayed_last_run_gives_mikktspace_cs_bits_on_two_threads() {
     for round in 0..400 {
         let large = round % 4 == 0;
         let vertex_count = 8 + rng.below(if large { 600 } else { 24 });
-        let mut at = |rng: &mut TestRng| rng.below(6) as f32 * 0.5;
+        let at = |rng: &mut TestRng| rng.below(6) as f32 * 0.5;
         let positions: Vec<[f32; 3]> = (0..vertex_count)
             .map(|_| [at(&mut rng), at(&mut rng), at(&mut rng)])
             .collect();
