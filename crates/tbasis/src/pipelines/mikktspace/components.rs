@@ -107,18 +107,15 @@ pub(crate) fn evaluate(
         }
         let root = if p == c { c } else { parent[p] as usize };
         parent[c] = root as u32;
+        let directions = inputs.directions(c);
         if root == c {
             components += 1;
             spaces[slot(c)] = [0.0; 3];
-            orientation[slot(c)] = if may_part(inputs.directions(c), None) {
-                MAY_PART
-            } else {
-                0
-            };
-        } else if may_part(inputs.directions(root), Some(inputs.directions(c))) {
+            orientation[slot(c)] = if may_part(directions, None) { MAY_PART } else { 0 };
+        } else if may_part(inputs.directions(root), Some(directions)) {
             orientation[slot(root)] = MAY_PART;
         }
-        <Vec3 as Space>::add(&mut spaces[slot(root)], inputs, c);
+        <Vec3 as Space>::add_with(&mut spaces[slot(root)], inputs, c, directions);
     }
 
     // 3. Each root's sum normalized, then copied to its members; those of a group whose

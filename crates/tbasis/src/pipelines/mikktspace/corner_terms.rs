@@ -23,7 +23,7 @@ pub(crate) struct CornerTerms<'a> {
 
 /// Fills `terms` for the good triangles `ids` (their welded vertices, whose `attributes` these
 /// are), with unit dP/ds and dP/dt `derivatives`.
-pub(crate) fn compute(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[Vec3]; 2], terms: CornerTerms) {
+pub(crate) fn compute(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[Vec3]; 2], mut terms: CornerTerms) {
     crate::kernel::simd::run(
         #[inline(always)]
         || {
@@ -31,31 +31,19 @@ pub(crate) fn compute(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[V
                 .chunks(LANES)
                 .zip(derivatives[0].chunks(LANES))
                 .zip(derivatives[1].chunks(LANES));
-            let angles = terms.angle.chunks_mut(3 * LANES);
-            match terms.directions {
-                Some([s, t]) => {
-                    let corners = s.chunks_mut(3 * LANES).zip(t.chunks_mut(3 * LANES)).zip(angles);
-                    for (((ids, tangent_s), tangent_t), ((s, t), angle)) in triangles.zip(corners) {
-                        let directions = Some([s, t]);
-                        batch(
-                            attributes,
-                            ids,
-                            [tangent_s, tangent_t],
-                            CornerTerms { directions, angle },
-                        );
-                    }
-                }
-                None => {
-                    for (((ids, tangent_s), tangent_t), angle) in triangles.zip(angles) {
-                        let directions = None;
-                        batch(
-                            attributes,
-                            ids,
-                            [tangent_s, tangent_t],
-                            CornerTerms { directions, angle },
-                        );
-                    }
-                }
+            for (batch_index, ((ids, tangent_s), tangent_t)) in triangles.enumerate() {
+                let corners = 3 * batch_index * LANES..3 * (batch_index * LANES + ids.len());
+                let directions = terms
+                    .directions
+                    .as_mut()
+                    .map(|[s, t]| [&mut s[corners.clone()], &mut t[corners.clone()]]);
+                let angle = &mut terms.angle[corners];
+                batch(
+                    attributes,
+                    ids,
+                    [tangent_s, tangent_t],
+                    CornerTerms { directions, angle },
+                );
             }
         },
     );
@@ -82,30 +70,35 @@ fn batch(attributes: &[Packed], ids: &[[u32; 3]], derivatives: [&[Vec3]; 2], mut
     let lane = |v: &[Lanes; 3], i: usize| lane3(v, i).to_array();
     for k in 0..3 {
         let (next, previous) = ((k + 1) % 3, (k + 2) % 3);
-        let mut projected = [[[0.0; LANES]; 3]; 2];
         let mut cosines = [0.0; LANES];
         for (i, cosine) in cosines[..lanes].iter_mut().enumerate() {
-            let n = lane(&normals[k], i);
             let corner = lane(&positions[k], i);
             let edges = (
                 sub(lane(&positions[previous], i), corner),
                 sub(lane(&positions[next], i), corner),
             );
-            *cosine = projected_cosine(edges.0, edges.1, n);
-            if terms.directions.is_some() {
-                for (projected, derivative) in projected.iter_mut().zip(&lanes_of_derivatives) {
-                    set_lane3(projected, i, project_normalized(lane(derivative, i), n));
-                }
-            }
+            *cosine = projected_cosine(edges.0, edges.1, lane(&normals[k], i));
         }
         let mut angles = [0.0; LANES];
         acos_lanes(&cosines, &mut angles, lanes);
         for (i, &angle) in angles[..ids.len()].iter().enumerate() {
-            if let Some([s, t]) = &mut terms.directions {
+            terms.angle[3 * i + k] = angle;
+        }
+        if let Some([s, t]) = &mut terms.directions {
+            let mut projected = [[[0.0; LANES]; 3]; 2];
+            for i in 0..lanes {
+                for (projected, derivative) in projected.iter_mut().zip(&lanes_of_derivatives) {
+                    set_lane3(
+                        projected,
+                        i,
+                        project_normalized(lane(derivative, i), lane(&normals[k], i)),
+                    );
+                }
+            }
+            for i in 0..ids.len() {
                 s[3 * i + k] = lane(&projected[0], i);
                 t[3 * i + k] = lane(&projected[1], i);
             }
-            terms.angle[3 * i + k] = angle;
         }
     }
 }

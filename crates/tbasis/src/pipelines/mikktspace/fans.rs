@@ -85,11 +85,7 @@ pub(crate) fn evaluate_on_ranges(
     let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
     let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
     super::write_in_ranges(ends, inputs.order, outputs, parts, |out, ((first, &end), counts)| {
-        // Compiled for the widest SIMD path, for the projections ([`project`]).
-        *counts = simd::run(
-            #[inline(always)]
-            || evaluate(inputs, ids, &lists, first..end, &mut Fan::default(), out),
-        )?;
+        *counts = evaluate(inputs, ids, &lists, first..end, &mut Fan::default(), out)?;
         Ok(())
     })?;
     let mut settled = Settled::default();
@@ -143,7 +139,6 @@ struct Fan {
 /// Writes the tangent and orientation of every corner at the welded vertices `vertices` into
 /// `out`; `fan` holds the arrays of fans past [`SCAN_LIMIT`] corners. Returns how many groups
 /// there were, how many went to the pairwise comparison, and how many fans were large.
-#[inline(always)]
 fn evaluate(
     inputs: &Inputs,
     ids: &[[u32; 3]],
@@ -201,7 +196,6 @@ fn evaluate(
 
 /// One welded vertex's `corners`, in ascending order; `edges` (room for two per corner) when
 /// there are more than [`SCAN_LIMIT`].
-#[inline(always)]
 fn evaluate_fan(
     inputs: &Inputs,
     ids: &[[u32; 3]],
@@ -228,7 +222,11 @@ fn evaluate_fan(
         reaching[i] = ids[g][(k + 2) % 3];
         parent[i] = i as u32;
     }
-    project(inputs, corners, directions);
+    // Compiled for the widest SIMD path.
+    simd::run(
+        #[inline(always)]
+        || project(inputs, corners, directions),
+    );
 
     // 1. Each pair of edges at the vertex joins its two corners when their triangles agree in
     //    orientation: the k-th edge leaving toward w with the k-th reaching from w.

@@ -450,7 +450,7 @@ fn solve<S: tspace::Space>(
     let mut check = |threads: u32| last_run_is_trivial(attributes, threads, &mut weld_buffers, packed, ids);
     let checked_beside = by_value.is_some() && ranges.ends().len() > 1;
     let trivial = match by_value {
-        Some(_) if checked_beside => Some(parallel::join(|| check(1), || derivatives(threads - 1)).0?),
+        Some(_) if checked_beside => Some(beside_derivatives(threads, &mut derivatives, &mut || check(1))?),
         Some(_) => Some(check(threads)?),
         None => None,
     };
@@ -476,7 +476,7 @@ fn solve<S: tspace::Space>(
     // GROUP_WITH_ANY triangle calls for the search.
     let paired_beside = !checked_beside && ranges.ends().len() > 1 && !fans_may_do;
     if paired_beside {
-        parallel::join(|| derivatives(threads - 1), &mut pairing).1?;
+        beside_derivatives(threads, &mut derivatives, &mut || pairing().map(|()| true))?;
     } else if !checked_beside {
         derivatives(threads);
     }
@@ -751,6 +751,16 @@ fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
         spare: b.values,
     };
     value_weld::weld(attributes, b.welded, class, b.source, memory)
+}
+
+/// Runs `derivatives` on `threads - 1` workers and `other` beside them on one; `other`'s outcome.
+/// One function for both uses, so that the threads' code is compiled once.
+fn beside_derivatives(
+    threads: u32,
+    derivatives: &mut (dyn FnMut(u32) + Send),
+    other: &mut (dyn FnMut() -> Result<bool, Error> + Send),
+) -> Result<bool, Error> {
+    parallel::join(|| derivatives(threads - 1), other).1
 }
 
 /// After a weld by value: whether the last run of the edge sort can be left out ([`last_run`]),

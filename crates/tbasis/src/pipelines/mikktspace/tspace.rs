@@ -69,12 +69,22 @@ impl Inputs<'_> {
                 ids,
                 derivatives,
             } => {
-                let (g, k) = (c / 3, c % 3);
-                let n = normal(&attributes[ids[g][k] as usize]);
-                derivatives.map(|d| project_normalized(d[g], n))
+                let g = c / 3;
+                projected(attributes, ids[g][c % 3], [derivatives[0][g], derivatives[1][g]])
             }
         }
     }
+}
+
+/// [`Directions::Projected`]'s directions of a corner whose welded vertex is `id`. Out of line:
+/// only the rare pairwise comparison reads them one by one.
+#[inline(never)]
+fn projected(attributes: &[Packed], id: u32, derivatives: [Vec3; 2]) -> [Vec3; 2] {
+    let n = normal(&attributes[id as usize]);
+    [
+        project_normalized(derivatives[0], n),
+        project_normalized(derivatives[1], n),
+    ]
 }
 
 /// What a corner's sub-group sum holds: the tangent alone, or all of `setTSpace`'s outputs.
