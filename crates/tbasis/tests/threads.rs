@@ -16,6 +16,34 @@ fn torus() -> Case {
     }
 }
 
+/// [`torus`] with its vertices renumbered out of its triangles' order, as FlightHelmet's are:
+/// vertex `v` becomes `v * 7919 mod V` (a permutation, 7919 being a prime that does not divide V),
+/// so that every range of vertices has a corner in nearly every triangle and the workers split the
+/// triangles instead.
+fn scattered_torus() -> Case {
+    let torus = torus();
+    let count = torus.vertex_count();
+    assert!(count % 7919 != 0);
+    let renumber = |v: usize| v * 7919 % count;
+    fn moved<T: Copy + Default>(values: &[T], renumber: impl Fn(usize) -> usize) -> Vec<T> {
+        let mut moved = vec![T::default(); values.len()];
+        for (v, &value) in values.iter().enumerate() {
+            moved[renumber(v)] = value;
+        }
+        moved
+    }
+    Case {
+        name: "scattered torus".into(),
+        positions: moved(&torus.positions, renumber),
+        normals: moved(&torus.normals, renumber),
+        texcoords: torus.texcoords.as_deref().map(|uv| moved(uv, renumber)),
+        indices: torus
+            .indices
+            .as_ref()
+            .map(|indices| indices.iter().map(|&v| renumber(v as usize) as u32).collect()),
+    }
+}
+
 fn bits<const N: usize>(values: &[[f32; N]]) -> Vec<u32> {
     values.iter().flatten().map(|x| x.to_bits()).collect()
 }
@@ -63,6 +91,17 @@ fn every_method_and_policy_is_bit_identical_across_thread_counts() {
             }
         }
         assert_same_for_every_thread_count(case, Options::default(), &[2, 3, 8]);
+    }
+}
+
+#[test]
+fn scattered_vertices_give_the_same_bits_on_every_thread_count() {
+    let case = scattered_torus();
+    let legacy = Options::default()
+        .with_method(Method::Lengyel)
+        .with_policy(DegeneratePolicy::Legacy);
+    for options in [legacy, Options::default()] {
+        assert_same_for_every_thread_count(&case, options, &[2, 3, 8]);
     }
 }
 

@@ -218,7 +218,7 @@ fn shuffled_meshes_are_split_by_triangles() {
     for vertex_count in [1000, 10_000] {
         let mesh = RandomMesh::new(vertex_count, 7, true).shuffled(7);
         // Each half of the vertices has a corner of 7 triangles in 8: vertex ranges do not pay,
-        // and the methods but LEGACY measure ranges of triangles.
+        // and the workers solve or measure ranges of triangles.
         assert_eq!(crate::kernel::parallel::worker_count(2, &mesh.mesh()), 1);
         assert_eq!(
             crate::kernel::parallel::workers_for(2, mesh.mesh().corner_count() / 3),
@@ -295,17 +295,34 @@ fn an_index_out_of_range_stops_every_worker() {
         1,
         "triangles measured apart"
     );
-    for method in [Method::Angle, Method::Lengyel, Method::Area] {
+    let configurations = [
+        (Method::Angle, DegeneratePolicy::Inherit),
+        (Method::Lengyel, DegeneratePolicy::Inherit),
+        (Method::Area, DegeneratePolicy::Inherit),
+        (Method::Lengyel, DegeneratePolicy::Legacy),
+    ];
+    for (method, policy) in configurations {
         for threads in [1, 2, 8] {
-            let options = Options::default().with_method(method).with_threads(threads);
+            let options = Options::default()
+                .with_method(method)
+                .with_policy(policy)
+                .with_threads(threads);
             let outcome = run(&mesh, &options);
             let error = Error::IndexOutOfRange {
                 triangle: bad / 3,
                 index: 3000,
                 vertex_count: 3000,
             };
-            assert_eq!(outcome.result, Err(error.clone()), "{method:?}, threads={threads}");
-            assert_eq!(outcome.corner_result, Err(error), "{method:?}, threads={threads}");
+            assert_eq!(
+                outcome.result,
+                Err(error.clone()),
+                "{method:?} {policy:?}, threads={threads}"
+            );
+            assert_eq!(
+                outcome.corner_result,
+                Err(error),
+                "{method:?} {policy:?}, threads={threads}"
+            );
             assert!(outcome.vertex_bits.iter().chain(&outcome.corner_bits).all(|&b| b == 0));
         }
     }

@@ -10,6 +10,8 @@
 //! caller's NaN included), where the listing passes on whichever its compiler picks.
 #![forbid(unsafe_code)]
 
+use core::ops::Range;
+
 use glam::{Vec2, Vec3, Vec3A, Vec4};
 
 use crate::kernel::error::Error;
@@ -51,9 +53,10 @@ pub(crate) fn generate(
 }
 
 /// Both loops of the listing, each vertex's frame written into `output` or, without one, kept in
-/// its sums. With several workers, each takes a consecutive range of vertices and reads the
-/// triangles that touch it, in triangle order, where the triangle order follows the vertex order
-/// (elsewhere one worker does all).
+/// its sums. With several workers: where the triangle order follows the vertex order, each takes
+/// a consecutive range of vertices, reads the triangles that touch it in triangle order, then
+/// (once every index is known good) resolves it; elsewhere they solve ranges of triangles apart
+/// and add after ([`accumulate_apart`]).
 fn run(
     mesh: &Mesh,
     options: &Options,
@@ -68,28 +71,28 @@ fn run(
             policy: options.degenerate_policy,
         });
     };
-    let workers = parallel::worker_count(options.threads, mesh);
-    // Forced inline: a closure left out of line is compiled for the baseline only.
-    let first_loop = |part: &mut Scratch, _: Option<&mut OutputPart>| {
-        simd::run(
-            #[inline(always)]
-            || accumulate(mesh, texcoords, options.flip_v, part),
-        )
-    };
-    let mut found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
-    count_flags(scratch.flags, &mut found);
-    sums::for_each_range(
-        scratch,
-        output,
-        workers,
-        |part, out| {
+    let workers = parallel::workers_for(options.threads, mesh.corner_count() / 3);
+    let mut found = if parallel::worker_count(options.threads, mesh) == workers {
+        // Forced inline: a closure left out of line is compiled for the baseline only.
+        let first_loop = |part: &mut Scratch, _: Option<&mut OutputPart>| {
+            simd::run(
+                #[inline(always)]
+                || accumulate(mesh, texcoords, options.flip_v, part),
+            )
+        };
+        let found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
+        let second_loop = |part: &mut Scratch, out: Option<&mut OutputPart>| {
             simd::run(
                 #[inline(always)]
                 || resolve(mesh, part, out),
             )
-        },
-        |(), ()| (),
-    );
+        };
+        sums::for_each_range(scratch, output, workers, second_loop, |(), ()| ());
+        found
+    } else {
+        accumulate_apart(mesh, texcoords, options.flip_v, (scratch, output), workers)?
+    };
+    count_flags(scratch.flags, &mut found);
     *report = found;
     Ok(())
 }
@@ -105,18 +108,124 @@ pub fn accumulate(
     flip_v: bool,
     scratch: &mut Scratch,
 ) -> Result<Report, Error> {
-    let triangle_count = mesh.indices.triangle_count(mesh.vertex_count())?;
-    let v_sign = if flip_v { -1.0 } else { 1.0 };
-    let listing = Listing {
-        mesh,
-        texcoords,
-        v_sign,
-        triangle_count,
+    let listing = Listing::new(mesh, texcoords, flip_v)?;
+    let triangles = 0..listing.triangle_count;
+    mesh.indices.with_corner_reader(FirstLoop {
+        listing,
+        triangles,
+        scratch,
+    })
+}
+
+/// How much smaller the first worker's range of triangles is than each other's in
+/// [`accumulate_apart`], as (numerator, denominator): it adds its terms at once, the others add
+/// theirs after, all workers sharing. On the benchmark asset, two workers took least time with
+/// about this ratio (solving a triangle costs about twice what adding its terms does).
+const FIRST_RANGE: (usize, usize) = (2, 3);
+
+/// Both loops on `workers` (at least 2) workers whatever the vertex order, with the same bits:
+///
+/// 1. the first worker solves the first range of triangles and adds their terms to the sums at
+///    once; each of the others solves a range of the triangles after it and keeps each triangle's
+///    terms ([`Solved`], 28 bytes a triangle, allocated here, untouched until it writes them);
+/// 2. each worker adds the kept terms to its own range of vertices, in triangle order, and
+///    resolves that range (every index was checked in step 1).
+///
+/// Every vertex so adds its terms in triangle order, as one worker does.
+fn accumulate_apart(
+    mesh: &Mesh,
+    texcoords: Strided<[f32; 2]>,
+    flip_v: bool,
+    (scratch, output): (&mut Scratch, Option<&mut Output>),
+    workers: usize,
+) -> Result<Report, Error> {
+    let listing = Listing::new(mesh, texcoords, flip_v)?;
+    let triangle_count = listing.triangle_count;
+    let (part, whole) = FIRST_RANGE;
+    let first_end = part * triangle_count / (whole * (workers - 1) + part);
+    let kept_ends = parallel::range_ends(triangle_count - first_end, workers - 1);
+    let kept_starts = core::iter::once(0).chain(kept_ends.ends().iter().copied());
+    let kept_ranges = kept_starts
+        .zip(kept_ends.ends())
+        .map(|(start, &end)| first_end + start..first_end + end);
+    let mut kept: [Vec<Solved>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    let kept = &mut kept[..workers - 1];
+    for (list, triangles) in kept.iter_mut().zip(kept_ranges.clone()) {
+        *list = memory::vec_with_capacity(triangles.len())?;
+    }
+
+    // 1. Per triangle: solve; the first range adds at once, the others keep their terms.
+    let kept_shares = kept
+        .iter_mut()
+        .zip(kept_ranges)
+        .map(|(list, triangles)| Share::Kept(triangles, list));
+    let shares = core::iter::once(Share::Added(&mut *scratch)).chain(kept_shares);
+    // Forced inline, here and below: a closure left out of line is compiled for the baseline only.
+    let solve = |share: Share| {
+        let listing = listing.clone();
+        match share {
+            Share::Added(scratch) => simd::run(
+                #[inline(always)]
+                || {
+                    let triangles = 0..first_end;
+                    mesh.indices.with_corner_reader(FirstLoop {
+                        listing,
+                        triangles,
+                        scratch,
+                    })
+                },
+            ),
+            Share::Kept(triangles, kept) => simd::run(
+                #[inline(always)]
+                || {
+                    mesh.indices.with_corner_reader(KeepLoop {
+                        listing,
+                        triangles,
+                        kept,
+                    })
+                },
+            ),
+        }
     };
-    mesh.indices.with_corner_reader(FirstLoop { listing, scratch })
+    let found = parallel::run_folded(shares, solve, parallel::merge_results).unwrap_or(Ok(Report::default()))?;
+
+    // 2. Per vertex range: add the kept terms after the first range's, then resolve.
+    let kept = &*kept;
+    let second_loop = |part: &mut Scratch, out: Option<&mut OutputPart>| {
+        simd::run(
+            #[inline(always)]
+            || {
+                let first = first_end;
+                mesh.indices.with_corner_reader(AddLoop {
+                    first,
+                    kept,
+                    scratch: part,
+                });
+                resolve(mesh, part, out)
+            },
+        )
+    };
+    sums::for_each_range(scratch, output, workers, second_loop, |(), ()| ());
+    Ok(found)
+}
+
+/// A worker's share of [`accumulate_apart`]'s triangles: added at once into the whole scratch, or
+/// the given ones kept.
+enum Share<'p, 'a> {
+    Added(&'p mut Scratch<'a>),
+    Kept(Range<usize>, &'p mut Vec<Solved>),
+}
+
+/// One triangle's terms of the first loop: what it adds to each of its vertices.
+struct Solved {
+    sdir: [f32; 3],
+    tdir: [f32; 3],
+    /// The orientation flag ([`Listing::solve`]).
+    orientation: u8,
 }
 
 /// The inputs of the listing's first loop.
+#[derive(Clone)]
 struct Listing<'m> {
     mesh: &'m Mesh<'m>,
     texcoords: Strided<'m, [f32; 2]>,
@@ -124,9 +233,10 @@ struct Listing<'m> {
     triangle_count: usize,
 }
 
-/// The first loop into one worker's scratch.
+/// The first loop over `triangles` into one worker's scratch.
 struct FirstLoop<'m, 's, 'a> {
     listing: Listing<'m>,
+    triangles: Range<usize>,
     scratch: &'s mut Scratch<'a>,
 }
 
@@ -136,50 +246,135 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
     /// A scratch holding every vertex (one worker) skips the test of whether it holds a corner.
     #[inline(always)]
     fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
-        let FirstLoop { listing, scratch } = self;
+        let FirstLoop {
+            listing,
+            triangles,
+            scratch,
+        } = self;
         let vertex_count = listing.mesh.vertex_count();
         let (first, len) = (scratch.first, scratch.flags.len());
         let (sums, flags) = (&mut scratch.sums[..len], &mut scratch.flags[..len]);
         if first == 0 && len == vertex_count {
-            listing.sweep(sums, flags, corners, Some)
+            listing.sweep(triangles, sums, flags, corners, Some)
         } else {
-            listing.sweep(sums, flags, corners, move |v| slot_in(v, first, len))
+            listing.sweep(triangles, sums, flags, corners, move |v| slot_in(v, first, len))
         }
     }
 }
 
-impl Listing<'_> {
-    /// The triangles in order; `slot(v)` is where vertex `v` sits in `sums` and `flags`, if there.
+/// The first loop's solve over `triangles`, into `kept` (empty, with room for them).
+struct KeepLoop<'m, 'p> {
+    listing: Listing<'m>,
+    triangles: Range<usize>,
+    kept: &'p mut Vec<Solved>,
+}
+
+impl PerIndexType for KeepLoop<'_, '_> {
+    type Output = Result<Report, Error>;
+
+    #[inline(always)]
+    fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
+        let KeepLoop {
+            listing,
+            triangles,
+            kept,
+        } = self;
+        let mut report = Report::default();
+        for a in triangles {
+            listing.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
+            let [i1, i2, i3] = listing.mesh.checked(corners(a))?;
+            let (sdir, tdir, orientation) = listing.solve(i1, i2, i3);
+            if orientation == 0 {
+                report.note_degenerate(a);
+            }
+            kept.push(Solved {
+                sdir: sdir.to_array(),
+                tdir: tdir.to_array(),
+                orientation,
+            });
+        }
+        Ok(report)
+    }
+}
+
+/// The kept terms of the triangles from `first` on, added to the vertices `scratch` holds.
+struct AddLoop<'k, 's, 'a> {
+    first: usize,
+    kept: &'k [Vec<Solved>],
+    scratch: &'s mut Scratch<'a>,
+}
+
+impl PerIndexType for AddLoop<'_, '_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self, corners: impl Fn(usize) -> [usize; 3]) {
+        let AddLoop { first, kept, scratch } = self;
+        let (start, len) = (scratch.first, scratch.flags.len());
+        for (a, solved) in (first..).zip(kept.iter().flatten()) {
+            for v in corners(a) {
+                if let Some(slot) = slot_in(v, start, len) {
+                    let terms = (
+                        Vec3A::from_array(solved.sdir),
+                        Vec3A::from_array(solved.tdir),
+                        solved.orientation,
+                    );
+                    add_terms(&mut scratch.sums[slot], &mut scratch.flags[slot], terms);
+                }
+            }
+        }
+    }
+}
+
+/// Adds one triangle's terms (`sdir`, `tdir`, orientation flag) to one of its vertices.
+#[inline(always)]
+fn add_terms(vertex: &mut VertexSums, flags: &mut u8, (sdir, tdir, orientation): (Vec3A, Vec3A, u8)) {
+    // `tan1` and the unused `weight` beside it in one 4-lane add (`weight` stays +0).
+    let [x, y, z] = vertex.primary;
+    let tan1 = Vec4::new(x, y, z, vertex.weight) + sdir.extend(0.0);
+    (vertex.primary, vertex.weight) = (tan1.truncate().to_array(), tan1.w);
+    for (sum, term) in vertex.secondary.iter_mut().zip(tdir.to_array()) {
+        *sum += term;
+    }
+    *flags |= flag::REFERENCED | orientation;
+}
+
+impl<'m> Listing<'m> {
+    /// The listing's inputs from `mesh`, or the index count's error.
+    fn new(mesh: &'m Mesh<'m>, texcoords: Strided<'m, [f32; 2]>, flip_v: bool) -> Result<Self, Error> {
+        Ok(Listing {
+            mesh,
+            texcoords,
+            v_sign: if flip_v { -1.0 } else { 1.0 },
+            triangle_count: mesh.indices.triangle_count(mesh.vertex_count())?,
+        })
+    }
+
+    /// `triangles` in order; `slot(v)` is where vertex `v` sits in `sums` and `flags`, if there.
     #[inline(always)]
     fn sweep(
         &self,
+        triangles: Range<usize>,
         sums: &mut [VertexSums],
         flags: &mut [u8],
         corners: impl Fn(usize) -> [usize; 3],
         slot: impl Fn(usize) -> Option<usize>,
     ) -> Result<Report, Error> {
         let mut report = Report::default();
-        for a in 0..self.triangle_count {
+        for a in triangles {
             self.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
             let [i1, i2, i3] = self.mesh.checked(corners(a))?;
             if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
                 continue;
             }
-            let (sdir, tdir, orientation) = self.solve(i1, i2, i3);
-            if orientation == 0 && slot(i1).is_some() {
+            let terms = self.solve(i1, i2, i3);
+            if terms.2 == 0 && slot(i1).is_some() {
                 report.note_degenerate(a);
             }
             for v in [i1, i2, i3] {
-                let Some(slot) = slot(v) else { continue };
-                let vertex = &mut sums[slot];
-                // `tan1` and the unused `weight` beside it in one 4-lane add (`weight` stays +0).
-                let [x, y, z] = vertex.primary;
-                let tan1 = Vec4::new(x, y, z, vertex.weight) + sdir.extend(0.0);
-                (vertex.primary, vertex.weight) = (tan1.truncate().to_array(), tan1.w);
-                for (sum, term) in vertex.secondary.iter_mut().zip(tdir.to_array()) {
-                    *sum += term;
+                if let Some(slot) = slot(v) {
+                    add_terms(&mut sums[slot], &mut flags[slot], terms);
                 }
-                flags[slot] |= flag::REFERENCED | orientation;
             }
         }
         Ok(report)
