@@ -133,43 +133,79 @@ fn run_spawning<P: Send, R: Send>(
         return each(run_part(&job, first));
     };
     // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
-    // nothing.
+    // nothing; its result waits in its slot until every part has run.
     let mut others = 0;
     let mut pending = Some(second);
-    let slots: [Mutex<Option<P>>; MAX_RANGES - 1] = core::array::from_fn(|_| {
+    let slots: [Mutex<Slot<P, R>>; MAX_RANGES - 1] = core::array::from_fn(|_| {
         let part = pending.take().or_else(|| parts.next());
         others += usize::from(part.is_some());
-        Mutex::new(part)
+        Mutex::new(part.map_or(Slot::Done(None), Slot::Part))
     });
     assert!(parts.next().is_none(), "more than MAX_RANGES parts");
     let slots = &slots[..others];
-    let take = |slot: &Mutex<Option<P>>| {
-        let part = slot.lock().unwrap_or_else(PoisonError::into_inner).take();
-        part.expect("each part runs once")
+    let run_other = |k: usize| {
+        let mut slot = slots[k].lock().unwrap_or_else(PoisonError::into_inner);
+        let Slot::Part(part) = core::mem::replace(&mut *slot, Slot::Done(None)) else {
+            unreachable!("each part runs once")
+        };
+        drop(slot);
+        let result = run_part(&job, part);
+        *slots[k].lock().unwrap_or_else(PoisonError::into_inner) = Slot::Done(Some(result));
     };
-    let (job, take) = (&job, &take);
+    let (mut first, mut first_result) = (Some(first), None);
+    let mut run_first = || first_result = first.take().map(|part| run_part(&job, part));
+    run_threads(others, &run_other, &mut run_first, &may_spawn);
+    each(first_result.expect("the first part ran"));
+    for slot in slots {
+        match core::mem::replace(
+            &mut *slot.lock().unwrap_or_else(PoisonError::into_inner),
+            Slot::Done(None),
+        ) {
+            Slot::Done(Some(result)) => each(result),
+            _ => unreachable!("every part ran"),
+        }
+    }
+}
+
+/// A part of [`run_spawning`] before it runs, or its result after.
+enum Slot<P, R> {
+    Part(P),
+    Done(Option<R>),
+}
+
+/// [`run_spawning`]'s threads, compiled once for every kind of part: `run_other(k)` for `k` below
+/// `others` on scoped threads (or on the calling thread, after `run_first`, when `may_spawn`
+/// says no or the thread cannot be started), `run_first` on the calling thread meanwhile. A
+/// panic on a thread resumes on the calling thread once every thread has ended.
+#[inline(never)]
+fn run_threads(
+    others: usize,
+    run_other: &(dyn Fn(usize) + Sync),
+    run_first: &mut dyn FnMut(),
+    may_spawn: &dyn Fn() -> bool,
+) {
     // A test that pins a vector path pins it on the workers too.
     #[cfg(test)]
     let pinned = crate::kernel::simd::tests::PINNED.with(core::cell::Cell::get);
     std::thread::scope(|scope| {
-        let mut handles: [Option<ScopedJoinHandle<'_, R>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
-        for (slot, handle) in slots.iter().zip(&mut handles) {
+        let mut handles: [Option<ScopedJoinHandle<'_, ()>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
+        for (k, handle) in handles[..others].iter_mut().enumerate() {
             if may_spawn() {
                 *handle = std::thread::Builder::new()
                     .spawn_scoped(scope, move || {
                         #[cfg(test)]
                         crate::kernel::simd::tests::PINNED.with(|path| path.set(pinned));
-                        run_part(job, take(slot))
+                        run_other(k)
                     })
                     .ok();
             }
         }
-        each(run_part(job, first));
-        for (slot, handle) in slots.iter().zip(&mut handles) {
-            each(match handle.take() {
+        run_first();
+        for (k, handle) in handles[..others].iter_mut().enumerate() {
+            match handle.take() {
                 Some(handle) => handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
-                None => run_part(job, take(slot)),
-            });
+                None => run_other(k),
+            }
         }
     });
 }

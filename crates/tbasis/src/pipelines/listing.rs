@@ -53,10 +53,10 @@ pub(crate) fn generate(
 }
 
 /// Both loops of the listing, each vertex's frame written into `output` or, without one, kept in
-/// its sums. With several workers: where the triangle order follows the vertex order, each takes
-/// a consecutive range of vertices, reads the triangles that touch it in triangle order, then
-/// (once every index is known good) resolves it; elsewhere they solve ranges of triangles apart
-/// and add after ([`accumulate_apart`]).
+/// its sums. With several workers, each resolves a consecutive range of vertices. The first loop:
+/// where the triangle order follows the vertex order, each worker reads the triangles that touch
+/// its range, in triangle order; elsewhere they solve ranges of triangles apart
+/// ([`solve_apart`]), and each adds the terms kept to its range before resolving it.
 fn run(
     mesh: &Mesh,
     options: &Options,
@@ -71,145 +71,95 @@ fn run(
             policy: options.degenerate_policy,
         });
     };
-    let workers = parallel::workers_for(options.threads, mesh.corner_count() / 3);
-    let mut found = if parallel::worker_count(options.threads, mesh) == workers {
-        // Forced inline: a closure left out of line is compiled for the baseline only.
-        let first_loop = |part: &mut Scratch, _: Option<&mut OutputPart>| {
-            simd::run(
-                #[inline(always)]
-                || accumulate(mesh, texcoords, options.flip_v, part),
-            )
-        };
+    let listing = Listing::new(mesh, texcoords, options.flip_v)?;
+    let workers = parallel::workers_for(options.threads, listing.triangle_count);
+    let mut lists: [Vec<Solved>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    let (mut found, kept) = if parallel::worker_count(options.threads, mesh) == workers {
+        let first_loop =
+            |part: &mut Scratch, _: Option<&mut OutputPart>| add_solved(&listing, 0..listing.triangle_count, part);
         let found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
-        let second_loop = |part: &mut Scratch, out: Option<&mut OutputPart>| {
-            simd::run(
-                #[inline(always)]
-                || resolve(mesh, part, out),
-            )
-        };
-        sums::for_each_range(scratch, output, workers, second_loop, |(), ()| ());
-        found
+        (found, None)
     } else {
-        accumulate_apart(mesh, texcoords, options.flip_v, (scratch, output), workers)?
+        let (found, first_kept) = solve_apart(&listing, scratch, &mut lists[..workers - 1])?;
+        (found, Some((first_kept, &lists[..workers - 1])))
     };
+    let second_loop = |part: &mut Scratch, out: Option<&mut OutputPart>| {
+        if let Some((first, kept)) = kept {
+            add_kept(mesh, first, kept, part);
+        }
+        // Forced inline, here and below: a closure left out of line is compiled for the baseline
+        // only.
+        simd::run(
+            #[inline(always)]
+            || resolve(mesh, part, out),
+        );
+    };
+    sums::for_each_range(scratch, output, workers, second_loop, |(), ()| ());
     count_flags(scratch.flags, &mut found);
     *report = found;
     Ok(())
 }
 
-/// First loop of the listing: per triangle, solve `[T B] = [Q1 Q2] * inverse([s1 t1; s2 t2])`
-/// and add `sdir` (dP/du) to `tan1`, `tdir` (dP/dv) to `tan2` of its three vertices, in triangle
-/// order, for the vertices `scratch` holds. Also checks every index, and counts the
-/// zero-determinant or non-finite triangles whose first vertex it holds.
-#[inline(always)]
-pub fn accumulate(
-    mesh: &Mesh,
-    texcoords: Strided<[f32; 2]>,
-    flip_v: bool,
-    scratch: &mut Scratch,
-) -> Result<Report, Error> {
-    let listing = Listing::new(mesh, texcoords, flip_v)?;
-    let triangles = 0..listing.triangle_count;
-    mesh.indices.with_corner_reader(FirstLoop {
-        listing,
-        triangles,
-        scratch,
-    })
+/// First loop of the listing over `triangles`: per triangle, solve
+/// `[T B] = [Q1 Q2] * inverse([s1 t1; s2 t2])` and add `sdir` (dP/du) to `tan1`, `tdir` (dP/dv)
+/// to `tan2` of its three vertices, in triangle order, for the vertices `scratch` holds. Also
+/// checks every index, and counts the zero-determinant or non-finite triangles whose first vertex
+/// it holds.
+fn add_solved(listing: &Listing, triangles: Range<usize>, scratch: &mut Scratch) -> Result<Report, Error> {
+    simd::run(
+        #[inline(always)]
+        || {
+            let listing = listing.clone();
+            listing.mesh.indices.with_corner_reader(FirstLoop {
+                listing,
+                triangles,
+                scratch,
+            })
+        },
+    )
 }
 
 /// How much smaller the first worker's range of triangles is than each other's in
-/// [`accumulate_apart`], as (numerator, denominator): it adds its terms at once, the others add
+/// [`solve_apart`], as (numerator, denominator): it adds its terms at once, the others add
 /// theirs after, all workers sharing. On the benchmark asset, two workers took least time with
 /// about this ratio (solving a triangle costs about twice what adding its terms does).
 const FIRST_RANGE: (usize, usize) = (2, 3);
 
-/// Both loops on `workers` (at least 2) workers whatever the vertex order, with the same bits:
-///
-/// 1. the first worker solves the first range of triangles and adds their terms to the sums at
-///    once; each of the others solves a range of the triangles after it and keeps each triangle's
-///    terms ([`Solved`], 28 bytes a triangle, allocated here, untouched until it writes them);
-/// 2. each worker adds the kept terms to its own range of vertices, in triangle order, and
-///    resolves that range (every index was checked in step 1).
-///
-/// Every vertex so adds its terms in triangle order, as one worker does.
-fn accumulate_apart(
-    mesh: &Mesh,
-    texcoords: Strided<[f32; 2]>,
-    flip_v: bool,
-    (scratch, output): (&mut Scratch, Option<&mut Output>),
-    workers: usize,
-) -> Result<Report, Error> {
-    let listing = Listing::new(mesh, texcoords, flip_v)?;
+/// The first loop on `lists.len() + 1` workers whatever the vertex order: the first worker solves
+/// the first range of triangles and adds their terms at once ([`add_solved`]); each of the others
+/// solves a range of the triangles after it and keeps each one's terms in its list ([`keep_solved`],
+/// 28 bytes a triangle, allocated here and untouched until the worker writes it). Returns what it
+/// found and the first triangle kept. Each vertex then adds the kept terms after the first
+/// range's, in triangle order ([`add_kept`]): the order one worker adds them in.
+fn solve_apart(listing: &Listing, scratch: &mut Scratch, lists: &mut [Vec<Solved>]) -> Result<(Report, usize), Error> {
     let triangle_count = listing.triangle_count;
     let (part, whole) = FIRST_RANGE;
-    let first_end = part * triangle_count / (whole * (workers - 1) + part);
-    let kept_ends = parallel::range_ends(triangle_count - first_end, workers - 1);
-    let kept_starts = core::iter::once(0).chain(kept_ends.ends().iter().copied());
-    let kept_ranges = kept_starts
-        .zip(kept_ends.ends())
-        .map(|(start, &end)| first_end + start..first_end + end);
-    let mut kept: [Vec<Solved>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
-    let kept = &mut kept[..workers - 1];
-    for (list, triangles) in kept.iter_mut().zip(kept_ranges.clone()) {
+    let first_kept = part * triangle_count / (whole * lists.len() + part);
+    let ends = parallel::range_ends(triangle_count - first_kept, lists.len());
+    let starts = core::iter::once(0).chain(ends.ends().iter().copied());
+    let ranges = starts
+        .zip(ends.ends())
+        .map(|(start, &end)| first_kept + start..first_kept + end);
+    for (list, triangles) in lists.iter_mut().zip(ranges.clone()) {
         *list = memory::vec_with_capacity(triangles.len())?;
     }
-
-    // 1. Per triangle: solve; the first range adds at once, the others keep their terms.
-    let kept_shares = kept
+    let kept = lists
         .iter_mut()
-        .zip(kept_ranges)
+        .zip(ranges)
         .map(|(list, triangles)| Share::Kept(triangles, list));
-    let shares = core::iter::once(Share::Added(&mut *scratch)).chain(kept_shares);
-    // Forced inline, here and below: a closure left out of line is compiled for the baseline only.
-    let solve = |share: Share| {
-        let listing = listing.clone();
-        match share {
-            Share::Added(scratch) => simd::run(
-                #[inline(always)]
-                || {
-                    let triangles = 0..first_end;
-                    mesh.indices.with_corner_reader(FirstLoop {
-                        listing,
-                        triangles,
-                        scratch,
-                    })
-                },
-            ),
-            Share::Kept(triangles, kept) => simd::run(
-                #[inline(always)]
-                || {
-                    mesh.indices.with_corner_reader(KeepLoop {
-                        listing,
-                        triangles,
-                        kept,
-                    })
-                },
-            ),
-        }
+    let shares = core::iter::once(Share::Added(scratch)).chain(kept);
+    let solve = |share: Share| match share {
+        Share::Added(scratch) => add_solved(listing, 0..first_kept, scratch),
+        Share::Kept(triangles, kept) => simd::run(
+            #[inline(always)]
+            || keep_solved(listing, triangles, kept),
+        ),
     };
     let found = parallel::run_folded(shares, solve, parallel::merge_results).unwrap_or(Ok(Report::default()))?;
-
-    // 2. Per vertex range: add the kept terms after the first range's, then resolve.
-    let kept = &*kept;
-    let second_loop = |part: &mut Scratch, out: Option<&mut OutputPart>| {
-        simd::run(
-            #[inline(always)]
-            || {
-                let first = first_end;
-                mesh.indices.with_corner_reader(AddLoop {
-                    first,
-                    kept,
-                    scratch: part,
-                });
-                resolve(mesh, part, out)
-            },
-        )
-    };
-    sums::for_each_range(scratch, output, workers, second_loop, |(), ()| ());
-    Ok(found)
+    Ok((found, first_kept))
 }
 
-/// A worker's share of [`accumulate_apart`]'s triangles: added at once into the whole scratch, or
+/// A worker's share of [`solve_apart`]'s triangles: added at once into the whole scratch, or
 /// the given ones kept.
 enum Share<'p, 'a> {
     Added(&'p mut Scratch<'a>),
@@ -262,65 +212,40 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
     }
 }
 
-/// The first loop's solve over `triangles`, into `kept` (empty, with room for them).
-struct KeepLoop<'m, 'p> {
-    listing: Listing<'m>,
-    triangles: Range<usize>,
-    kept: &'p mut Vec<Solved>,
-}
-
-impl PerIndexType for KeepLoop<'_, '_> {
-    type Output = Result<Report, Error>;
-
-    #[inline(always)]
-    fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
-        let KeepLoop {
-            listing,
-            triangles,
-            kept,
-        } = self;
-        let mut report = Report::default();
-        for a in triangles {
-            listing.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
-            let [i1, i2, i3] = listing.mesh.checked(corners(a))?;
-            let (sdir, tdir, orientation) = listing.solve(i1, i2, i3);
-            if orientation == 0 {
-                report.note_degenerate(a);
-            }
-            kept.push(Solved {
-                sdir: sdir.to_array(),
-                tdir: tdir.to_array(),
-                orientation,
-            });
+/// The first loop's solve over `triangles`, into `kept` (empty, with room for them). Here and in
+/// [`add_kept`], the index type is matched per triangle, not compiled into a loop per type as in
+/// [`FirstLoop`]: these run only on large indexed meshes, where the match costs nothing measurable,
+/// and the library stays smaller.
+#[inline(always)]
+fn keep_solved(listing: &Listing, triangles: Range<usize>, kept: &mut Vec<Solved>) -> Result<Report, Error> {
+    let mut report = Report::default();
+    for a in triangles {
+        listing.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
+        let [i1, i2, i3] = listing.mesh.checked_triangle(a)?;
+        let (sdir, tdir, orientation) = listing.solve(i1, i2, i3);
+        if orientation == 0 {
+            report.note_degenerate(a);
         }
-        Ok(report)
+        kept.push(Solved {
+            sdir: sdir.to_array(),
+            tdir: tdir.to_array(),
+            orientation,
+        });
     }
+    Ok(report)
 }
 
-/// The kept terms of the triangles from `first` on, added to the vertices `scratch` holds.
-struct AddLoop<'k, 's, 'a> {
-    first: usize,
-    kept: &'k [Vec<Solved>],
-    scratch: &'s mut Scratch<'a>,
-}
-
-impl PerIndexType for AddLoop<'_, '_, '_> {
-    type Output = ();
-
-    #[inline(always)]
-    fn run(self, corners: impl Fn(usize) -> [usize; 3]) {
-        let AddLoop { first, kept, scratch } = self;
-        let (start, len) = (scratch.first, scratch.flags.len());
-        for (a, solved) in (first..).zip(kept.iter().flatten()) {
-            for v in corners(a) {
-                if let Some(slot) = slot_in(v, start, len) {
-                    let terms = (
-                        Vec3A::from_array(solved.sdir),
-                        Vec3A::from_array(solved.tdir),
-                        solved.orientation,
-                    );
-                    add_terms(&mut scratch.sums[slot], &mut scratch.flags[slot], terms);
-                }
+/// Adds the terms `kept` for the triangles from `first` on to the vertices `scratch` holds.
+fn add_kept(mesh: &Mesh, first: usize, kept: &[Vec<Solved>], scratch: &mut Scratch) {
+    for (a, solved) in (first..).zip(kept.iter().flatten()) {
+        for v in mesh.indices.triangle(a) {
+            if let Some(slot) = scratch.slot(v) {
+                let terms = (
+                    Vec3A::from_array(solved.sdir),
+                    Vec3A::from_array(solved.tdir),
+                    solved.orientation,
+                );
+                add_terms(&mut scratch.sums[slot], &mut scratch.flags[slot], terms);
             }
         }
     }
