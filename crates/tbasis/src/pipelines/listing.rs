@@ -582,6 +582,57 @@ mod tests {
         }
     }
 
+    /// A caller's stale scratch gives the bits of a zeroed one and of fresh memory, on one thread
+    /// and several, per vertex and per corner, with vertices no triangle references (zero sums).
+    #[test]
+    fn stale_scratch_gives_the_bits_of_zeroed_memory() {
+        let mut rng = TestRng(0x57A1);
+        let vertex_count = 400;
+        let mut pick = || rng.unit() * 4.0 - 2.0;
+        let positions: Vec<[f32; 3]> = (0..vertex_count).map(|_| [pick(), pick(), pick()]).collect();
+        let normals: Vec<[f32; 3]> = (0..vertex_count).map(|_| [pick(), pick(), pick()]).collect();
+        let texcoords: Vec<[f32; 2]> = (0..vertex_count).map(|_| [pick(), pick()]).collect();
+        // The last 100 vertices are referenced by no triangle.
+        let mut rng = TestRng(0x1D7E);
+        let indices: Vec<u32> = (0..3 * 500).map(|_| rng.below(vertex_count - 100) as u32).collect();
+        let mesh = Mesh::new(&positions[..], &normals[..])
+            .with_texcoords(&texcoords[..])
+            .with_indices(&indices[..]);
+        for threads in [1, 2, 8] {
+            let options = Options::default()
+                .with_method(crate::Method::Lengyel)
+                .with_policy(crate::DegeneratePolicy::Legacy)
+                .with_threads(threads);
+            let size = crate::scratch_size_for(&mesh, &options).unwrap();
+            let run = |scratch: Option<u8>| {
+                let mut frames = vec![[0.0f32; 4]; vertex_count];
+                let mut corners = vec![[0.0f32; 4]; indices.len()];
+                let mut bytes = vec![scratch.unwrap_or(0); size];
+                let mut output = Output::new(&mut frames[..]);
+                let mut corner_output = StridedMut::from_slice(&mut corners[..]);
+                match scratch {
+                    Some(_) => {
+                        crate::generate_with_scratch(&mesh, &options, &mut output, &mut bytes).unwrap();
+                        crate::generate_corners_with_scratch(&mesh, &options, &mut corner_output, &mut bytes).unwrap();
+                    }
+                    None => {
+                        crate::generate(&mesh, &options, &mut output).unwrap();
+                        crate::generate_corners(&mesh, &options, &mut corner_output).unwrap();
+                    }
+                }
+                let bits = |values: &[[f32; 4]]| values.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>();
+                (bits(&frames), bits(&corners))
+            };
+            let fresh = run(None);
+            for stale in [0x00, 0xA5, 0xFF] {
+                assert!(run(Some(stale)) == fresh, "threads={threads}, scratch bytes {stale:#x}");
+            }
+            // An unreferenced vertex: zero sums give a NaN tangent (0 / 0) and w = 1.
+            let unreferenced = &fresh.0[4 * (vertex_count - 1)..];
+            assert!(f32::from_bits(unreferenced[0]).is_nan() && f32::from_bits(unreferenced[3]) == 1.0);
+        }
+    }
+
     /// The listing's loops read packed arrays as slices and other layouts through strided views,
     /// and run compiled for each SIMD path: all give the same bits, on values that reach every
     /// branch (zero and non-finite edges, overflowing `sdir`, NaNs of both signs and with payloads
