@@ -1,7 +1,7 @@
 //! Typed arrays in untyped memory: the caller's scratch, or a fresh allocation, cut into the
 //! working arrays of a call without copying.
 
-use core::mem::size_of;
+use core::mem::{size_of, size_of_val, MaybeUninit};
 
 use crate::kernel::sums::VertexSums;
 
@@ -62,12 +62,48 @@ pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
     // SAFETY: `layout` has a nonzero size, as `alloc_zeroed` requires. A non-null result points to
     // `len` initialized (zero) bytes from the global allocator with `layout`, alignment 1 and size
     // `len`: what `Vec::from_raw_parts` needs for a `Vec<u8>` of length and capacity `len`, which
-    // then owns and frees it.
+    // then owns and frees it. Before that, the same bytes are borrowed once, exclusively, to ask
+    // for huge pages.
     unsafe {
         let pointer = std::alloc::alloc_zeroed(layout);
         if pointer.is_null() {
             return None;
         }
+        advise_huge_pages(core::slice::from_raw_parts_mut(pointer.cast::<MaybeUninit<u8>>(), len));
         Some(Vec::from_raw_parts(pointer, len, len))
     }
 }
+
+/// Asks the system to back the 2 MiB-aligned part of `memory` with huge pages when they are
+/// faulted in (Linux: `madvise(MADV_HUGEPAGE)`, which matters where transparent huge pages are
+/// enabled only for memory that asks, a common default). A call's working memory is fresh and
+/// large: in 4 KiB pages, first touches cost a fault each (about 72,000 a call on a 1M-vertex
+/// mesh with method MIKKTSPACE). Advice only: whether the system follows it changes no byte, and
+/// its failure is ignored.
+#[cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
+pub(crate) fn advise_huge_pages<T>(memory: &mut [MaybeUninit<T>]) {
+    const HUGE_PAGE: usize = 2 << 20;
+    /// `MADV_HUGEPAGE` in Linux's generic `mman-common.h`, which both architectures use.
+    const MADV_HUGEPAGE: core::ffi::c_int = 14;
+    extern "C" {
+        fn madvise(address: *mut core::ffi::c_void, len: usize, advice: core::ffi::c_int) -> core::ffi::c_int;
+    }
+    let start = memory.as_mut_ptr() as usize;
+    let (first, end) = (
+        start.next_multiple_of(HUGE_PAGE),
+        (start + size_of_val(memory)) / HUGE_PAGE * HUGE_PAGE,
+    );
+    if end > first {
+        // SAFETY: `madvise` from the C library the standard library links, with its C signature;
+        // the range lies inside `memory`, which this function borrows exclusively, and
+        // MADV_HUGEPAGE changes no byte of it (nor whether it is initialized).
+        unsafe {
+            let address = memory.as_mut_ptr().cast::<u8>().wrapping_add(first - start);
+            madvise(address.cast(), end - first, MADV_HUGEPAGE);
+        }
+    }
+}
+
+/// Elsewhere there is nothing to ask.
+#[cfg(not(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64"))))]
+pub(crate) fn advise_huge_pages<T>(_: &mut [MaybeUninit<T>]) {}
