@@ -73,13 +73,15 @@ fn run(
     };
     let listing = Listing::new(mesh, texcoords, options.flip_v)?;
     let workers = parallel::workers_for(options.threads, listing.triangle_count);
-    let mut lists: [Vec<Solved>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
-    let (mut found, kept) = if parallel::worker_count(options.threads, mesh) == workers {
+    // Made only where the workers solve apart: small meshes call often.
+    let mut lists: [Vec<Solved>; parallel::MAX_RANGES];
+    let (mut found, kept) = if workers == 1 || parallel::worker_count(options.threads, mesh) == workers {
         let first_loop =
             |part: &mut Scratch, _: Option<&mut OutputPart>| add_solved(&listing, 0..listing.triangle_count, part);
         let found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
         (found, None)
     } else {
+        lists = core::array::from_fn(|_| Vec::new());
         let (found, first_kept) = solve_apart(&listing, scratch, &mut lists[..workers - 1])?;
         (found, Some((first_kept, &lists[..workers - 1])))
     };
