@@ -16,31 +16,41 @@ fn torus() -> Case {
     }
 }
 
-/// [`torus`] with its vertices renumbered out of its triangles' order, as FlightHelmet's are:
-/// vertex `v` becomes `v * 7919 mod V` (a permutation, 7919 being a prime that does not divide V),
-/// so that every range of vertices has a corner in nearly every triangle and the workers split the
-/// triangles instead.
+/// [`torus`] with its vertices renumbered at random (a seeded shuffle), as FlightHelmet's are out
+/// of its triangles' order: each half of the vertices has a corner in about 7 triangles of 8, so
+/// two workers solve ranges of triangles apart instead of splitting the vertices.
 fn scattered_torus() -> Case {
     let torus = torus();
     let count = torus.vertex_count();
-    assert!(count % 7919 != 0);
-    let renumber = |v: usize| v * 7919 % count;
-    fn moved<T: Copy + Default>(values: &[T], renumber: impl Fn(usize) -> usize) -> Vec<T> {
-        let mut moved = vec![T::default(); values.len()];
+    let mut renumbered: Vec<usize> = (0..count).collect();
+    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    for i in (1..count).rev() {
+        // xorshift64
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        renumbered.swap(i, (state % (i as u64 + 1)) as usize);
+    }
+    let moved = |values: &[[f32; 3]]| {
+        let mut moved = vec![[0.0; 3]; count];
         for (v, &value) in values.iter().enumerate() {
-            moved[renumber(v)] = value;
+            moved[renumbered[v]] = value;
         }
         moved
+    };
+    let mut texcoords = vec![[0.0; 2]; count];
+    for (v, &uv) in torus.texcoords.as_deref().unwrap_or_default().iter().enumerate() {
+        texcoords[renumbered[v]] = uv;
     }
     Case {
         name: "scattered torus".into(),
-        positions: moved(&torus.positions, renumber),
-        normals: moved(&torus.normals, renumber),
-        texcoords: torus.texcoords.as_deref().map(|uv| moved(uv, renumber)),
+        positions: moved(&torus.positions),
+        normals: moved(&torus.normals),
+        texcoords: Some(texcoords),
         indices: torus
             .indices
             .as_ref()
-            .map(|indices| indices.iter().map(|&v| renumber(v as usize) as u32).collect()),
+            .map(|indices| indices.iter().map(|&v| renumbered[v as usize] as u32).collect()),
     }
 }
 

@@ -341,7 +341,7 @@ impl Drop for Lockstep<'_> {
 }
 
 /// One part's work: a function of its own, so that the job's code is compiled once, not at each
-/// of [`run_spawning`]'s four places that may run a part.
+/// of the places that may run a part ([`run_spawning`]'s three, [`run_together`]'s two).
 #[inline(never)]
 fn run_part<P, R>(job: &impl Fn(P) -> R, part: P) -> R {
     job(part)

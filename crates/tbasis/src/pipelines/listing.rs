@@ -195,7 +195,8 @@ struct FirstLoop<'m, 's, 'a> {
 impl PerIndexType for FirstLoop<'_, '_, '_> {
     type Output = Result<Report, Error>;
 
-    /// A scratch holding every vertex (one worker) skips the test of whether it holds a corner.
+    /// A scratch holding every vertex (one worker, or the first of workers solving apart) skips the
+    /// test of whether it holds a corner.
     #[inline(always)]
     fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
         let FirstLoop {
@@ -581,6 +582,53 @@ mod tests {
             }
             // Every outcome occurs, each many times.
             assert!(seen.iter().all(|&n| n > 1000), "{seen:?}");
+        }
+    }
+
+    /// Every triangle with a corner in each third of the vertices: three workers solve ranges of
+    /// triangles apart (two keep their terms), with the bits and report of one, per vertex and
+    /// per corner, including an index out of range in a kept range.
+    #[test]
+    fn three_workers_solving_apart_give_the_bits_of_one() {
+        let third = 300;
+        let mut rng = TestRng(0x3A9F);
+        let mut pick = || rng.unit() * 4.0 - 2.0;
+        let positions: Vec<[f32; 3]> = (0..3 * third).map(|_| [pick(), pick(), pick()]).collect();
+        let normals: Vec<[f32; 3]> = (0..3 * third).map(|_| [pick(), pick(), pick()]).collect();
+        let texcoords: Vec<[f32; 2]> = (0..3 * third).map(|_| [pick(), pick()]).collect();
+        let mut rng = TestRng(0x77C1);
+        let mut indices: Vec<u32> = (0..600)
+            .flat_map(|_| [0, 1, 2].map(|k| (k * third + rng.below(third)) as u32))
+            .collect();
+        let options = |threads| {
+            Options::default()
+                .with_method(crate::Method::Lengyel)
+                .with_policy(crate::DegeneratePolicy::Legacy)
+                .with_threads(threads)
+        };
+        for bad in [None, Some(indices.len() - 4)] {
+            if let Some(corner) = bad {
+                indices[corner] = 3 * third as u32;
+            }
+            let mesh = Mesh::new(&positions[..], &normals[..])
+                .with_texcoords(&texcoords[..])
+                .with_indices(&indices[..]);
+            assert_eq!(parallel::workers_for(3, 600), 3);
+            assert_eq!(parallel::worker_count(3, &mesh), 1, "the vertex ranges do not pay");
+            let run = |threads: u32| {
+                let mut frames = vec![[0.0f32; 4]; 3 * third];
+                let mut corners = vec![[0.0f32; 4]; indices.len()];
+                let result = crate::generate(&mesh, &options(threads), &mut Output::new(&mut frames[..]));
+                let corner_result =
+                    crate::generate_corners(&mesh, &options(threads), &mut StridedMut::from_slice(&mut corners[..]));
+                let bits = |values: &[[f32; 4]]| values.iter().flatten().map(|x| x.to_bits()).collect::<Vec<u32>>();
+                (result, corner_result, bits(&frames), bits(&corners))
+            };
+            let one = run(1);
+            assert_eq!(one.0.is_err(), bad.is_some());
+            for threads in [2, 3] {
+                assert!(run(threads) == one, "threads={threads}, index out of range: {bad:?}");
+            }
         }
     }
 

@@ -51,7 +51,8 @@ pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T
 
 /// `len` zero bytes from the global allocator's zeroed allocation, or `None` when the memory is not
 /// there. The system gives fresh pages already zeroed (`calloc`), so nothing writes them here and
-/// pages a call never touches are never faulted in; `vec![0; len]` makes the same allocation but
+/// pages a call never touches are never faulted in (in huge pages where [`advise_huge_pages`]
+/// asked for them: 2 MiB at a time); `vec![0; len]` makes the same allocation but
 /// aborts the process on failure, which the C boundary must never do. The bytes are the memory the
 /// scratch's typed views are carved from ([`pod_prefix_mut`]).
 pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
@@ -78,22 +79,26 @@ pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
 /// faulted in (Linux: `madvise(MADV_HUGEPAGE)`, which matters where transparent huge pages are
 /// enabled only for memory that asks, a common default). A call's working memory is fresh and
 /// large: in 4 KiB pages, first touches cost a fault each (about 72,000 a call on a 1M-vertex
-/// mesh with method MIKKTSPACE). Advice only: whether the system follows it changes no byte, and
-/// its failure is ignored.
+/// mesh with method MIKKTSPACE). Only from 32 MiB on, glibc's largest threshold for mapping an
+/// allocation on its own (`DEFAULT_MMAP_THRESHOLD_MAX` on 64-bit systems): its `malloc` maps every
+/// allocation that large apart and unmaps it when it is freed, so the advice ends with the memory
+/// instead of staying on heap memory the program reuses. Advice only: whether the
+/// system follows it changes no byte, and its failure is ignored.
 #[cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
 pub(crate) fn advise_huge_pages<T>(memory: &mut [MaybeUninit<T>]) {
     const HUGE_PAGE: usize = 2 << 20;
+    const HUGE_PAGES_FROM: usize = 32 << 20;
     /// `MADV_HUGEPAGE` in Linux's generic `mman-common.h`, which both architectures use.
     const MADV_HUGEPAGE: core::ffi::c_int = 14;
     extern "C" {
         fn madvise(address: *mut core::ffi::c_void, len: usize, advice: core::ffi::c_int) -> core::ffi::c_int;
     }
-    let start = memory.as_mut_ptr() as usize;
-    let (first, end) = (
-        start.next_multiple_of(HUGE_PAGE),
-        (start + size_of_val(memory)) / HUGE_PAGE * HUGE_PAGE,
-    );
-    if end > first {
+    let (start, len) = (memory.as_mut_ptr() as usize, size_of_val(memory));
+    let Some(first) = start.checked_next_multiple_of(HUGE_PAGE) else {
+        return;
+    };
+    let end = (start + len) / HUGE_PAGE * HUGE_PAGE;
+    if len >= HUGE_PAGES_FROM && end > first {
         // SAFETY: `madvise` from the C library the standard library links, with its C signature;
         // the range lies inside `memory`, which this function borrows exclusively, and
         // MADV_HUGEPAGE changes no byte of it (nor whether it is initialized).
