@@ -9,7 +9,7 @@ use core::mem::{align_of, size_of};
 
 use crate::kernel::error::Error;
 use crate::kernel::sums::{Links, Scratch, VertexSums};
-use crate::kernel::views::pod::{advise_huge_pages, pod_prefix_mut, try_zeroed_bytes, Pod};
+use crate::kernel::views::pod::{pod_prefix_mut, try_zeroed_bytes, Pod};
 
 /// Either counts the bytes the arrays need or hands them out of caller or heap memory.
 pub(crate) enum Arena<'a> {
@@ -123,12 +123,10 @@ pub(crate) fn zeroed_bytes(len: usize) -> Result<Vec<u8>, Error> {
     try_zeroed_bytes(len).ok_or(Error::OutOfMemory)
 }
 
-/// An empty vector with room for `n` elements, or [`Error::OutOfMemory`]; huge pages asked for
-/// its room when it is large ([`advise_huge_pages`]).
+/// An empty vector with room for `n` elements, or [`Error::OutOfMemory`].
 pub(crate) fn vec_with_capacity<T>(n: usize) -> Result<Vec<T>, Error> {
     let mut v = Vec::new();
     v.try_reserve_exact(n).map_err(|_| Error::OutOfMemory)?;
-    advise_huge_pages(v.spare_capacity_mut());
     Ok(v)
 }
 

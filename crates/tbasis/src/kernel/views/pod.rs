@@ -1,7 +1,7 @@
 //! Typed arrays in untyped memory: the caller's scratch, or a fresh allocation, cut into the
 //! working arrays of a call without copying.
 
-use core::mem::{size_of, size_of_val, MaybeUninit};
+use core::mem::{size_of, MaybeUninit};
 
 use crate::kernel::sums::VertexSums;
 
@@ -70,7 +70,7 @@ pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
         if pointer.is_null() {
             return None;
         }
-        advise_huge_pages(core::slice::from_raw_parts_mut(pointer.cast::<MaybeUninit<u8>>(), len));
+        advise_huge_pages(core::slice::from_raw_parts_mut(pointer.cast(), len));
         Some(Vec::from_raw_parts(pointer, len, len))
     }
 }
@@ -85,7 +85,7 @@ pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
 /// instead of staying on heap memory the program reuses. Advice only: whether the
 /// system follows it changes no byte, and its failure is ignored.
 #[cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
-pub(crate) fn advise_huge_pages<T>(memory: &mut [MaybeUninit<T>]) {
+fn advise_huge_pages(memory: &mut [MaybeUninit<u8>]) {
     const HUGE_PAGE: usize = 2 << 20;
     const HUGE_PAGES_FROM: usize = 32 << 20;
     /// `MADV_HUGEPAGE` in Linux's generic `mman-common.h`, which both architectures use.
@@ -93,7 +93,7 @@ pub(crate) fn advise_huge_pages<T>(memory: &mut [MaybeUninit<T>]) {
     extern "C" {
         fn madvise(address: *mut core::ffi::c_void, len: usize, advice: core::ffi::c_int) -> core::ffi::c_int;
     }
-    let (start, len) = (memory.as_mut_ptr() as usize, size_of_val(memory));
+    let (start, len) = (memory.as_mut_ptr() as usize, memory.len());
     let Some(first) = start.checked_next_multiple_of(HUGE_PAGE) else {
         return;
     };
@@ -103,7 +103,7 @@ pub(crate) fn advise_huge_pages<T>(memory: &mut [MaybeUninit<T>]) {
         // the range lies inside `memory`, which this function borrows exclusively, and
         // MADV_HUGEPAGE changes no byte of it (nor whether it is initialized).
         unsafe {
-            let address = memory.as_mut_ptr().cast::<u8>().wrapping_add(first - start);
+            let address = memory.as_mut_ptr().wrapping_add(first - start);
             madvise(address.cast(), end - first, MADV_HUGEPAGE);
         }
     }
@@ -111,4 +111,4 @@ pub(crate) fn advise_huge_pages<T>(memory: &mut [MaybeUninit<T>]) {
 
 /// Elsewhere there is nothing to ask.
 #[cfg(not(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64"))))]
-pub(crate) fn advise_huge_pages<T>(_: &mut [MaybeUninit<T>]) {}
+fn advise_huge_pages(_: &mut [MaybeUninit<u8>]) {}
