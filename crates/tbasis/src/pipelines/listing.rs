@@ -295,8 +295,8 @@ impl<'m> Listing<'m> {
             if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
                 continue;
             }
-            let terms = self.solve(i1, i2, i3);
-            if terms.2 == 0 && slot(i1).is_some() {
+            let terms @ (_, _, orientation) = self.solve(i1, i2, i3);
+            if orientation == 0 && slot(i1).is_some() {
                 report.note_degenerate(a);
             }
             for v in [i1, i2, i3] {
