@@ -2,7 +2,7 @@
 
 use tbasis::{DegeneratePolicy, Method, Options};
 use tbasis_test_support::cases::{quantized_uv_sphere, Case};
-use tbasis_test_support::scenes::{build, SceneSpec};
+use tbasis_test_support::scenes::{build, Pcg32, SceneSpec};
 
 /// A jittered, warped torus large enough for four workers.
 fn torus() -> Case {
@@ -23,30 +23,22 @@ fn scattered_torus() -> Case {
     let torus = torus();
     let count = torus.vertex_count();
     let mut renumbered: Vec<usize> = (0..count).collect();
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    let mut rng = Pcg32::new(0x5CA7, 1);
     for i in (1..count).rev() {
-        // xorshift64
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        renumbered.swap(i, (state % (i as u64 + 1)) as usize);
+        renumbered.swap(i, (u64::from(rng.next_u32()) * (i as u64 + 1) >> 32) as usize);
     }
-    let moved = |values: &[[f32; 3]]| {
-        let mut moved = vec![[0.0; 3]; count];
+    fn moved<T: Copy>(values: &[T], renumbered: &[usize]) -> Vec<T> {
+        let mut moved = values.to_vec();
         for (v, &value) in values.iter().enumerate() {
             moved[renumbered[v]] = value;
         }
         moved
-    };
-    let mut texcoords = vec![[0.0; 2]; count];
-    for (v, &uv) in torus.texcoords.as_deref().unwrap_or_default().iter().enumerate() {
-        texcoords[renumbered[v]] = uv;
     }
     Case {
         name: "scattered torus".into(),
-        positions: moved(&torus.positions),
-        normals: moved(&torus.normals),
-        texcoords: Some(texcoords),
+        positions: moved(&torus.positions, &renumbered),
+        normals: moved(&torus.normals, &renumbered),
+        texcoords: torus.texcoords.as_deref().map(|uv| moved(uv, &renumbered)),
         indices: torus
             .indices
             .as_ref()

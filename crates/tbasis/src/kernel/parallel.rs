@@ -139,38 +139,36 @@ fn run_spawning<P: Send, R: Send>(
     let slots: [Mutex<Slot<P, R>>; MAX_RANGES - 1] = core::array::from_fn(|_| {
         let part = pending.take().or_else(|| parts.next());
         others += usize::from(part.is_some());
-        Mutex::new(part.map_or(Slot::Done(None), Slot::Part))
+        Mutex::new(part.map_or(Slot::Taken, Slot::Part))
     });
     assert!(parts.next().is_none(), "more than MAX_RANGES parts");
     let slots = &slots[..others];
     let run_other = |k: usize| {
         let mut slot = slots[k].lock().unwrap_or_else(PoisonError::into_inner);
-        let Slot::Part(part) = core::mem::replace(&mut *slot, Slot::Done(None)) else {
+        let Slot::Part(part) = core::mem::replace(&mut *slot, Slot::Taken) else {
             unreachable!("each part runs once")
         };
         drop(slot);
         let result = run_part(&job, part);
-        *slots[k].lock().unwrap_or_else(PoisonError::into_inner) = Slot::Done(Some(result));
+        *slots[k].lock().unwrap_or_else(PoisonError::into_inner) = Slot::Done(result);
     };
     let (mut first, mut first_result) = (Some(first), None);
     let mut run_first = || first_result = first.take().map(|part| run_part(&job, part));
     run_threads(others, &run_other, &mut run_first, &may_spawn);
     each(first_result.expect("the first part ran"));
     for slot in slots {
-        match core::mem::replace(
-            &mut *slot.lock().unwrap_or_else(PoisonError::into_inner),
-            Slot::Done(None),
-        ) {
-            Slot::Done(Some(result)) => each(result),
+        match core::mem::replace(&mut *slot.lock().unwrap_or_else(PoisonError::into_inner), Slot::Taken) {
+            Slot::Done(result) => each(result),
             _ => unreachable!("every part ran"),
         }
     }
 }
 
-/// A part of [`run_spawning`] before it runs, or its result after.
+/// A part of [`run_spawning`] before it runs, its result after, or neither (running, or handed on).
 enum Slot<P, R> {
     Part(P),
-    Done(Option<R>),
+    Done(R),
+    Taken,
 }
 
 /// [`run_spawning`]'s threads, compiled once for every kind of part: `run_other(k)` for `k` below
