@@ -25,7 +25,7 @@ fn scattered_torus() -> Case {
     let mut renumbered: Vec<usize> = (0..count).collect();
     let mut rng = Pcg32::new(0x5CA7, 1);
     for i in (1..count).rev() {
-        renumbered.swap(i, (u64::from(rng.next_u32()) * (i as u64 + 1) >> 32) as usize);
+        renumbered.swap(i, ((u64::from(rng.next_u32()) * (i as u64 + 1)) >> 32) as usize);
     }
     fn moved<T: Copy>(values: &[T], renumbered: &[usize]) -> Vec<T> {
         let mut moved = values.to_vec();
