@@ -2,6 +2,7 @@
 //! or as indices.
 
 use serde_json::Value;
+use tbasis::{Element, Indices, Strided};
 
 use crate::document::{Accessor, BufferView, ComponentType, Sparse};
 
@@ -51,58 +52,131 @@ fn layout_of(accessor: &Accessor, index: usize) -> Result<Layout, String> {
 pub fn packed(json: &Value, buffers: &Buffers, index: usize) -> Result<(Layout, Vec<u8>), String> {
     let accessor = Accessor::read(json, index)?;
     let layout = layout_of(&accessor, index)?;
+    // Checked before anything is allocated: the size, and where the elements lie.
+    let place = located(json, buffers, index, &accessor, layout)?;
+    let size = layout.element_size();
+    let mut out = vec![0u8; layout.count * size];
+    write_elements(json, buffers, index, (&accessor, layout, place), &mut out, size)?;
+    Ok((layout, out))
+}
+
+/// Writes the elements of accessor `index` (sparse substitutions applied) into `out`, one every
+/// `out_stride` bytes; `out` must hold them, and is left as it is around them.
+pub fn copy_into(
+    json: &Value,
+    buffers: &Buffers,
+    index: usize,
+    out: &mut [u8],
+    out_stride: usize,
+) -> Result<(), String> {
+    let accessor = Accessor::read(json, index)?;
+    let layout = layout_of(&accessor, index)?;
+    let place = located(json, buffers, index, &accessor, layout)?;
+    write_elements(json, buffers, index, (&accessor, layout, place), out, out_stride)
+}
+
+/// Where an accessor's elements lie, as [`located`] returns it.
+type Place<'a> = Option<(&'a [u8], usize)>;
+
+fn write_elements(
+    json: &Value,
+    buffers: &Buffers,
+    index: usize,
+    (accessor, layout, place): (&Accessor, Layout, Place),
+    out: &mut [u8],
+    out_stride: usize,
+) -> Result<(), String> {
+    let size = layout.element_size();
+    let slots = out.chunks_mut(out_stride).take(layout.count);
+    match place {
+        // A stride may be shorter than an element (elements that overlap): `bytes` ends with
+        // the last element.
+        Some((bytes, stride)) => {
+            for (e, slot) in slots.enumerate() {
+                slot[..size].copy_from_slice(&bytes[e * stride..e * stride + size]);
+            }
+        }
+        None => slots.for_each(|slot| slot[..size].fill(0)),
+    }
+    if let Some(sparse) = &accessor.sparse {
+        apply_sparse(json, buffers, index, sparse, (size, out_stride), layout.count, out)?;
+    }
+    Ok(())
+}
+
+/// Where the elements of `accessor` (number `index`) lie: the bytes from its first element on
+/// and the stride, checked to hold every element; `None` without a bufferView (zeros, at most
+/// [`MAX_ZEROS`] bytes of them).
+fn located<'a>(
+    json: &Value,
+    buffers: &'a Buffers,
+    index: usize,
+    accessor: &Accessor,
+    layout: Layout,
+) -> Result<Place<'a>, String> {
     let size = layout.element_size();
     let what = format!("accessor {index}");
     let total = layout
         .count
         .checked_mul(size)
         .ok_or_else(|| format!("{what}: too large"))?;
-    let mut out = match accessor.buffer_view {
-        // No bufferView: zeros, unless sparse says otherwise.
-        None if total > MAX_ZEROS => {
+    let Some(view_index) = accessor.buffer_view else {
+        if total > MAX_ZEROS {
             return Err(format!(
                 "{what}: {} elements without a bufferView, {total} bytes of zeros (at most {MAX_ZEROS} are read)",
                 layout.count
-            ))
+            ));
         }
-        None => vec![0u8; total],
-        Some(view_index) => {
-            let view = BufferView::read(json, view_index)?;
-            let stride = view.byte_stride.unwrap_or(size);
-            let start = accessor.byte_offset;
-            let bytes = view_bytes(&view, view_index, buffers)?;
-            // The end of the last element.
-            let end = match layout.count.checked_sub(1) {
-                None => Some(start),
-                Some(last) => last
-                    .checked_mul(stride)
-                    .and_then(|x| x.checked_add(start))
-                    .and_then(|x| x.checked_add(size)),
-            }
-            .ok_or_else(|| format!("{what}: too large"))?;
-            if end > bytes.len() {
-                return Err(format!(
-                    "{what}: needs {end} bytes of bufferView {view_index}, which has {}",
-                    bytes.len()
-                ));
-            }
-            if stride == size {
-                bytes[start..end].to_vec()
-            } else {
-                let mut out = Vec::with_capacity(total);
-                for element in 0..layout.count {
-                    // Below `end`, checked above.
-                    let at = start + element * stride;
-                    out.extend_from_slice(&bytes[at..at + size]);
-                }
-                out
-            }
-        }
+        return Ok(None);
     };
-    if let Some(sparse) = &accessor.sparse {
-        apply_sparse(json, buffers, index, sparse, size, layout.count, &mut out)?;
+    let view = BufferView::read(json, view_index)?;
+    let stride = view.byte_stride.unwrap_or(size);
+    let start = accessor.byte_offset;
+    let bytes = view_bytes(&view, view_index, buffers)?;
+    // The end of the last element.
+    let end = match layout.count.checked_sub(1) {
+        None => Some(start),
+        Some(last) => last
+            .checked_mul(stride)
+            .and_then(|x| x.checked_add(start))
+            .and_then(|x| x.checked_add(size)),
     }
-    Ok((layout, out))
+    .ok_or_else(|| format!("{what}: too large"))?;
+    if end > bytes.len() {
+        return Err(format!(
+            "{what}: needs {end} bytes of bufferView {view_index}, which has {}",
+            bytes.len()
+        ));
+    }
+    Ok(Some((&bytes[start..end], stride)))
+}
+
+/// The elements of accessor `index` where they lie in its buffer, when the library reads them
+/// as stored: a bufferView, no sparse substitution, components of type `component`, and a
+/// little-endian machine (glTF's byte order).
+fn in_place<'a, T: Element>(
+    json: &Value,
+    buffers: &'a Buffers,
+    index: usize,
+    component: ComponentType,
+) -> Result<Option<Strided<'a, T>>, String> {
+    let accessor = Accessor::read(json, index)?;
+    let layout = layout_of(&accessor, index)?;
+    let stored_as_read = cfg!(target_endian = "little")
+        && accessor.sparse.is_none()
+        && layout.component == component
+        && !layout.normalized
+        && layout.element_size() == size_of::<T>();
+    if !stored_as_read {
+        return Ok(None);
+    }
+    // Elements that overlap (a stride shorter than an element) are copied apart instead.
+    Ok(match located(json, buffers, index, &accessor, layout)? {
+        Some((bytes, stride)) if stride >= size_of::<T>() => {
+            Some(Strided::from_bytes(bytes, stride, layout.count).map_err(|e| format!("accessor {index}: {e}"))?)
+        }
+        _ => None,
+    })
 }
 
 /// Writes the substituted elements into `out`, `count` elements of `size` bytes.
@@ -111,7 +185,7 @@ fn apply_sparse(
     buffers: &Buffers,
     index: usize,
     sparse: &Sparse,
-    size: usize,
+    (size, out_stride): (usize, usize),
     count: usize,
     out: &mut [u8],
 ) -> Result<(), String> {
@@ -139,7 +213,8 @@ fn apply_sparse(
             ));
         }
         let from = sparse.values_offset + k * size;
-        out[target * size..(target + 1) * size].copy_from_slice(&values[from..from + size]);
+        let to = target * out_stride;
+        out[to..to + size].copy_from_slice(&values[from..from + size]);
     }
     Ok(())
 }
@@ -174,9 +249,21 @@ fn read_index(bytes: &[u8]) -> u32 {
     }
 }
 
-/// Accessor `index` as `N` floats per element: floats as they are, normalized integers mapped
-/// to [0, 1] or [-1, 1], other integers (KHR_mesh_quantization) converted.
-pub fn floats<const N: usize>(json: &Value, buffers: &Buffers, index: usize) -> Result<Vec<[f32; N]>, String> {
+/// Accessor `index` as `N` floats per element: floats where they lie in the buffer when they can
+/// be read in place ([`in_place`]), else converted into `storage`: normalized integers mapped to
+/// [0, 1] or [-1, 1], other integers (KHR_mesh_quantization) converted.
+pub fn floats<'a, const N: usize>(
+    json: &Value,
+    buffers: &'a Buffers,
+    index: usize,
+    storage: &'a mut Vec<[f32; N]>,
+) -> Result<Strided<'a, [f32; N]>, String>
+where
+    [f32; N]: Element,
+{
+    if let Some(view) = in_place(json, buffers, index, ComponentType::Float)? {
+        return Ok(view);
+    }
     let (layout, bytes) = packed(json, buffers, index)?;
     if layout.components != N {
         return Err(format!(
@@ -199,17 +286,33 @@ pub fn floats<const N: usize>(json: &Value, buffers: &Buffers, index: usize) -> 
             (ComponentType::UnsignedInt, _) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f32,
         }
     };
-    Ok(bytes
+    *storage = bytes
         .chunks_exact(size * N)
         .map(|element| std::array::from_fn(|k| convert(&element[k * size..(k + 1) * size])))
-        .collect())
+        .collect();
+    Ok(Strided::from_slice(storage))
 }
 
-/// Accessor `index` as indices (unsigned byte, short or int scalars).
-pub fn indices(json: &Value, buffers: &Buffers, index: usize) -> Result<Vec<u32>, String> {
-    let (layout, bytes) = packed(json, buffers, index)?;
+/// Accessor `index` as indices (unsigned byte, short or int scalars): 16- and 32-bit indices where
+/// they lie in the buffer when they can be read in place ([`in_place`]), else converted into
+/// `storage`.
+pub fn indices<'a>(
+    json: &Value,
+    buffers: &'a Buffers,
+    index: usize,
+    storage: &'a mut Vec<u32>,
+) -> Result<Indices<'a>, String> {
+    let layout = layout(json, index)?;
     if layout.components != 1 || !layout.component.is_index() {
         return Err(format!("accessor {index}: indices must be unsigned scalars"));
     }
-    Ok(bytes.chunks_exact(layout.component.size()).map(read_index).collect())
+    if let Some(view) = in_place(json, buffers, index, ComponentType::UnsignedShort)? {
+        return Ok(Indices::U16(view));
+    }
+    if let Some(view) = in_place(json, buffers, index, ComponentType::UnsignedInt)? {
+        return Ok(Indices::U32(view));
+    }
+    let (layout, bytes) = packed(json, buffers, index)?;
+    *storage = bytes.chunks_exact(layout.component.size()).map(read_index).collect();
+    Ok(Indices::U32(Strided::from_slice(storage)))
 }

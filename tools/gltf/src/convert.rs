@@ -10,11 +10,12 @@ use std::time::{Duration, Instant};
 use serde_json::{json, Value};
 use tbasis::Options;
 
+use crate::accessor;
 use crate::args::Job;
 use crate::buffers::Appender;
 use crate::document::{self, Buffer};
 use crate::io::{self, Asset, Kind};
-use crate::primitive::{self, Computed, Edit};
+use crate::primitive::{self, Computed, Edit, Workspace};
 use crate::prune;
 use crate::select::{self, Key, Plan, Source};
 use crate::uri;
@@ -155,17 +156,24 @@ fn primitive_name(json: &Value, m: usize, p: usize) -> String {
 /// Every source's tangents and split, on up to `settings.threads` threads; the first error wins.
 fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result<Vec<Computed>, String> {
     let results: Vec<Mutex<Option<Result<Computed, String>>>> = sources.iter().map(|_| Mutex::new(None)).collect();
+    // Largest first: the threads finish together, and each thread's workspace is as large as it
+    // will be at its first primitive, so that the later ones reuse its pages.
+    let mut order: Vec<usize> = (0..sources.len()).collect();
+    let size = |k: &usize| accessor::layout(&asset.json, sources[*k].position).map_or(0, |layout| layout.count);
+    order.sort_by_key(|k| std::cmp::Reverse(size(k)));
     let next = AtomicUsize::new(0);
     // Threads the primitives leave idle (a file of one large primitive) go to each call; the bits
     // are the same on any thread count.
     let per_call = (settings.threads / sources.len().max(1)).max(1);
     let options = settings.options.with_threads(per_call as u32);
-    let work = || loop {
-        let k = next.fetch_add(1, Ordering::Relaxed);
-        let Some(source) = sources.get(k) else { break };
-        let result = primitive::compute(source, &asset.json, &asset.buffers, &options)
-            .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)));
-        *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
+    let work = || {
+        let mut workspace = Workspace::default();
+        while let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
+            let source = &sources[k];
+            let result = primitive::compute(source, &asset.json, &asset.buffers, &options, &mut workspace)
+                .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)));
+            *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
+        }
     };
     let threads = settings.threads.clamp(1, sources.len().max(1));
     std::thread::scope(|scope| {

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use serde_json::{json, Map, Value};
-use tbasis::{copy_split_vertices, generate_corners, split_corners, Indices, Mesh, Options, Report, SeamSplit};
+use tbasis::{copy_split_vertices, split_corners, Indices, Mesh, Options, Report, ScratchBuffer, SeamSplit};
 use tbasis::{Strided, StridedMut};
 
 use crate::accessor::{self, Buffers, Layout};
@@ -35,8 +35,24 @@ pub struct Edit {
     pub vertices_added: usize,
 }
 
+/// Memory a thread reuses from primitive to primitive: after the first (the largest, when they
+/// come largest first), its pages are already mapped.
+#[derive(Default)]
+pub struct Workspace {
+    /// The library's working memory.
+    scratch: ScratchBuffer,
+    /// Tangents per corner.
+    corners: Vec<[f32; 4]>,
+}
+
 /// Computes the primitive's tangents per corner and splits its seams.
-pub fn compute(source: &Source, json: &Value, buffers: &Buffers, options: &Options) -> Result<Computed, String> {
+pub fn compute(
+    source: &Source,
+    json: &Value,
+    buffers: &Buffers,
+    options: &Options,
+    workspace: &mut Workspace,
+) -> Result<Computed, String> {
     let read = |name: &str, index: usize| -> Result<Layout, String> {
         accessor::layout(json, index).map_err(|e| format!("{name}: {e}"))
     };
@@ -51,50 +67,49 @@ pub fn compute(source: &Source, json: &Value, buffers: &Buffers, options: &Optio
             return Err(format!("{name} has {count} elements, POSITION {vertex_count}"));
         }
     }
-    let positions = accessor::floats::<3>(json, buffers, source.position).map_err(|e| format!("POSITION: {e}"))?;
-    let normals = accessor::floats::<3>(json, buffers, source.normal).map_err(|e| format!("NORMAL: {e}"))?;
-    let texcoords =
-        accessor::floats::<2>(json, buffers, source.texcoord).map_err(|e| format!("texture coordinates: {e}"))?;
+    let (mut positions, mut normals, mut texcoords, mut indices) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let positions =
+        accessor::floats::<3>(json, buffers, source.position, &mut positions).map_err(|e| format!("POSITION: {e}"))?;
+    let normals =
+        accessor::floats::<3>(json, buffers, source.normal, &mut normals).map_err(|e| format!("NORMAL: {e}"))?;
+    let texcoords = accessor::floats::<2>(json, buffers, source.texcoord, &mut texcoords)
+        .map_err(|e| format!("texture coordinates: {e}"))?;
     let (indices, index_type) = match source.indices {
         Some(index) => {
             let layout = read("indices", index)?;
-            let indices = accessor::indices(json, buffers, index).map_err(|e| format!("indices: {e}"))?;
-            (Some(indices), Some(layout.component))
+            let indices = accessor::indices(json, buffers, index, &mut indices).map_err(|e| format!("indices: {e}"))?;
+            (indices, Some(layout.component))
         }
-        None => (None, None),
+        None => (Indices::None, None),
     };
     let mesh = Mesh {
-        positions: Strided::from_slice(&positions),
-        normals: Strided::from_slice(&normals),
-        texcoords: Some(Strided::from_slice(&texcoords)),
-        indices: indices
-            .as_deref()
-            .map_or(Indices::None, |indices| Indices::U32(Strided::from_slice(indices))),
+        positions,
+        normals,
+        texcoords: Some(texcoords),
+        indices,
     };
-    let mut corners = vec![[0.0f32; 4]; mesh.corner_count()];
-    let report = generate_corners(&mesh, options, &mut StridedMut::from_slice(&mut corners))
+    let corners = &mut workspace.corners;
+    // Every corner is written: what an earlier primitive left is overwritten.
+    corners.resize(mesh.corner_count(), [0.0; 4]);
+    let report = workspace
+        .scratch
+        .generate_corners(&mesh, options, &mut StridedMut::from_slice(corners))
         .map_err(|e| format!("tangents: {e}"))?;
-    let split = split_corners(&mesh, &Strided::from_slice(&corners)).map_err(|e| format!("seam split: {e}"))?;
+    let split = split_corners(&mesh, &Strided::from_slice(corners)).map_err(|e| format!("seam split: {e}"))?;
 
-    // A vertex no triangle uses still needs a valid TANGENT: a frame built from its normal.
-    let total = vertex_count + split.sources.len();
-    let mut tangents = vec![None; total];
-    for (&vertex, corner) in split.indices.iter().zip(&corners) {
-        tangents[vertex as usize] = Some(*corner);
+    // Each corner's tangent goes to its vertex. A vertex no triangle uses (its `w` is still 0:
+    // a written one is +1 or -1) still needs a valid TANGENT: a frame built from its normal.
+    let mut tangents = vec![[0.0f32; 4]; vertex_count + split.sources.len()];
+    for (&vertex, corner) in split.indices.iter().zip(corners.iter()) {
+        tangents[vertex as usize] = *corner;
     }
-    let tangents = tangents
-        .into_iter()
-        .enumerate()
-        .map(|(v, t)| {
-            t.unwrap_or_else(|| {
-                let source = split
-                    .sources
-                    .get(v.wrapping_sub(vertex_count))
-                    .map_or(v, |&s| s as usize);
-                tbasis::fallback_frame(normals[source])
-            })
-        })
-        .collect();
+    for (v, tangent) in tangents.iter_mut().enumerate().filter(|(_, t)| t[3] == 0.0) {
+        let source = split
+            .sources
+            .get(v.wrapping_sub(vertex_count))
+            .map_or(v, |&s| s as usize);
+        *tangent = tbasis::fallback_frame(normals.get(source));
+    }
     Ok(Computed {
         vertex_count,
         tangents,
@@ -203,7 +218,7 @@ fn copy_attribute(
     sources: &[u32],
     appender: &mut Appender,
 ) -> Result<usize, String> {
-    let (layout, packed) = accessor::packed(json, buffers, index)?;
+    let layout = accessor::layout(json, index)?;
     let size = layout.element_size();
     // Vertex attribute elements must start on 4-byte boundaries.
     let stride = size.next_multiple_of(4);
@@ -213,13 +228,7 @@ fn copy_attribute(
         (stride != size).then_some(stride),
         ARRAY_BUFFER,
     )?;
-    if stride == size {
-        data[..packed.len()].copy_from_slice(&packed);
-    } else {
-        for (element, slot) in packed.chunks_exact(size).zip(data.chunks_exact_mut(stride)) {
-            slot[..size].copy_from_slice(element);
-        }
-    }
+    accessor::copy_into(json, buffers, index, data, stride)?;
     copy_split_vertices(data, stride, size, vertex_count, sources).map_err(|e| format!("copying vertices: {e}"))?;
     let old = &json["accessors"][index];
     let mut accessor = json!({

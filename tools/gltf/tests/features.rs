@@ -235,3 +235,186 @@ fn policy_legacy_needs_a_method_with_a_legacy_form() {
     ]);
     assert!(listing.status.success(), "{}", String::from_utf8_lossy(&listing.stderr));
 }
+
+/// A 6 x 6 grid, wavy in z, whose UVs mirror at its middle column: what each vertex holds, and
+/// its triangles.
+struct Grid {
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    /// As 16-bit normalized integers; the float layouts store exactly what they decode to.
+    texcoords: Vec<[u16; 2]>,
+    triangles: Vec<u32>,
+}
+
+impl Grid {
+    fn new() -> Grid {
+        const SIDE: usize = 6;
+        let (mut positions, mut normals, mut texcoords, mut triangles) = (vec![], vec![], vec![], vec![]);
+        for y in 0..SIDE {
+            for x in 0..SIDE {
+                let (fx, fy) = (x as f32, y as f32);
+                positions.push([fx, fy, (fx * 0.7).sin() * (fy * 0.5).cos()]);
+                normals.push([-(fx * 0.3).cos() * 0.4, 0.2, 0.89]);
+                let mirrored = x.min(2 * (SIDE / 2) - x);
+                texcoords.push([(mirrored * 9000) as u16, (y * 11000 + x * 700) as u16]);
+            }
+        }
+        for y in 0..SIDE - 1 {
+            for x in 0..SIDE - 1 {
+                let v = (y * SIDE + x) as u32;
+                let s = SIDE as u32;
+                triangles.extend([v, v + 1, v + s + 1, v, v + s + 1, v + s]);
+            }
+        }
+        Grid {
+            positions,
+            normals,
+            texcoords,
+            triangles,
+        }
+    }
+
+    fn texcoord_floats(&self) -> Vec<[f32; 2]> {
+        let decode = |u: u16| f32::from(u) / 65535.0;
+        self.texcoords.iter().map(|&[u, v]| [decode(u), decode(v)]).collect()
+    }
+
+    /// An empty document of one triangle primitive, for the layouts to fill.
+    fn fixture() -> Fixture {
+        let mut f = Fixture::mirrored_quad();
+        f.json["accessors"] = json!([]);
+        f.json["bufferViews"] = json!([]);
+        f.bin.clear();
+        f
+    }
+
+    /// Every attribute packed in its own bufferView as floats, 16-bit indices.
+    fn packed(&self) -> Fixture {
+        let mut f = Grid::fixture();
+        let position = f.floats(&self.positions, "VEC3", true);
+        let normal = f.floats(&self.normals, "VEC3", false);
+        let texcoord = f.floats(&self.texcoord_floats(), "VEC2", false);
+        let indices: Vec<u16> = self.triangles.iter().map(|&i| i as u16).collect();
+        let indices = f.u16_indices(&indices);
+        *f.primitive(0) = json!({ "attributes": { "POSITION": position, "NORMAL": normal, "TEXCOORD_0": texcoord }, "indices": indices, "mode": 4 });
+        f
+    }
+
+    /// The three attributes interleaved in one bufferView (a 32-byte stride), 32-bit indices.
+    fn interleaved(&self) -> Fixture {
+        let mut f = Grid::fixture();
+        let texcoords = self.texcoord_floats();
+        let mut bytes = Vec::new();
+        for ((position, normal), texcoord) in self.positions.iter().zip(&self.normals).zip(&texcoords) {
+            let floats = position.iter().chain(normal).chain(texcoord);
+            bytes.extend(floats.flat_map(|f| f.to_le_bytes()));
+        }
+        let view = f.view(&bytes, Some(32));
+        let count = self.positions.len();
+        let mut accessor = |offset: usize, kind: &str| {
+            let accessors = f.json["accessors"].as_array_mut().unwrap();
+            accessors.push(json!({ "bufferView": view, "byteOffset": offset, "componentType": 5126, "count": count, "type": kind }));
+            accessors.len() - 1
+        };
+        let (position, normal, texcoord) = (accessor(0, "VEC3"), accessor(12, "VEC3"), accessor(24, "VEC2"));
+        let min_max = |k: usize, pick: fn(f32, f32) -> f32| self.positions.iter().map(|p| p[k]).reduce(pick).unwrap();
+        f.json["accessors"][position]["min"] = json!([0, 1, 2].map(|k| min_max(k, f32::min)));
+        f.json["accessors"][position]["max"] = json!([0, 1, 2].map(|k| min_max(k, f32::max)));
+        let indices: Vec<u8> = self.triangles.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let indices = f.accessor(&indices, 5125, "SCALAR", self.triangles.len(), json!({}));
+        *f.primitive(0) = json!({ "attributes": { "POSITION": position, "NORMAL": normal, "TEXCOORD_0": texcoord }, "indices": indices, "mode": 4 });
+        f
+    }
+
+    /// What the tool converts: texture coordinates as normalized 16-bit integers, 8-bit indices,
+    /// and positions whose vertex 7 is set by a sparse substitution.
+    fn converted(&self) -> Fixture {
+        let mut f = Grid::fixture();
+        let mut wrong = self.positions.clone();
+        wrong[7] = [50.0, -3.0, 8.0];
+        let position = f.floats(&wrong, "VEC3", true);
+        let values: Vec<u8> = self.positions[7].iter().flat_map(|f| f.to_le_bytes()).collect();
+        let (indices_view, values_view) = (f.view(&[7], None), f.view(&values, None));
+        f.json["accessors"][position]["sparse"] = json!({
+            "count": 1,
+            "indices": { "bufferView": indices_view, "componentType": 5121 },
+            "values": { "bufferView": values_view },
+        });
+        let normal = f.floats(&self.normals, "VEC3", false);
+        let texcoords: Vec<u8> = self.texcoords.iter().flatten().flat_map(|u| u.to_le_bytes()).collect();
+        let texcoord = f.accessor(
+            &texcoords,
+            5123,
+            "VEC2",
+            self.texcoords.len(),
+            json!({ "normalized": true }),
+        );
+        let indices: Vec<u8> = self.triangles.iter().map(|&i| i as u8).collect();
+        let indices = f.accessor(&indices, 5121, "SCALAR", self.triangles.len(), json!({}));
+        *f.primitive(0) = json!({ "attributes": { "POSITION": position, "NORMAL": normal, "TEXCOORD_0": texcoord }, "indices": indices, "mode": 4 });
+        f
+    }
+}
+
+/// Runs the tool on `fixture` written as `dir/name.glb`: each corner's tangent, as bits.
+fn corner_tangents(dir: &std::path::Path, fixture: &Fixture, name: &str) -> Vec<[u32; 4]> {
+    let input = fixture.write_glb(dir, name);
+    let output = dir.join(format!("{name}.out.glb"));
+    let result = tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()]);
+    assert!(
+        result.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let corners = Doc::open(&output).corners(0, 0, 0);
+    let tangents = corners.tangents.expect("TANGENT written");
+    corners
+        .indices
+        .iter()
+        .map(|&v| tangents[v as usize].map(f32::to_bits))
+        .collect()
+}
+
+#[test]
+fn every_accessor_layout_gives_the_same_tangents() {
+    // The tool reads float attributes and 16- and 32-bit indices where they lie (packed or
+    // strided) and converts the rest (normalized integers, 8-bit indices, sparse substitutions):
+    // every way of storing the same mesh must give each corner the same tangent.
+    let dir = tool::fresh_dir("layouts");
+    let grid = Grid::new();
+    let packed = corner_tangents(&dir, &grid.packed(), "packed");
+    let mirrored = packed.iter().filter(|t| f32::from_bits(t[3]) < 0.0).count();
+    assert!(0 < mirrored && mirrored < packed.len(), "the grid is mirrored in part");
+    for (name, fixture) in [("interleaved", grid.interleaved()), ("converted", grid.converted())] {
+        let tangents = corner_tangents(&dir, &fixture, name);
+        let differ = packed.iter().zip(&tangents).filter(|(a, b)| a != b).count();
+        assert_eq!(tangents.len(), packed.len(), "{name}: corners");
+        assert_eq!(
+            differ, 0,
+            "{name}: corners whose tangent differs from the packed layout's"
+        );
+    }
+}
+
+#[test]
+fn elements_that_overlap_are_read_as_they_lie() {
+    // A byteStride shorter than the element: texture coordinate i is floats i and i + 1 of one
+    // list. The tool reads them as a packed copy of the same pairs would be read.
+    let dir = tool::fresh_dir("overlap");
+    let floats = [0.0f32, 1.0, 0.0, 2.0, 1.0];
+    let pairs: Vec<[f32; 2]> = floats.windows(2).map(|w| [w[0], w[1]]).collect();
+    let mut packed = Fixture::mirrored_quad();
+    let texcoord = packed.floats(&pairs, "VEC2", false);
+    packed.primitive(0)["attributes"]["TEXCOORD_0"] = json!(texcoord);
+    let mut overlapping = Fixture::mirrored_quad();
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    let view = overlapping.view(&bytes, Some(4));
+    let accessors = overlapping.json["accessors"].as_array_mut().unwrap();
+    accessors.push(json!({ "bufferView": view, "componentType": 5126, "count": 4, "type": "VEC2" }));
+    let texcoord = accessors.len() - 1;
+    overlapping.primitive(0)["attributes"]["TEXCOORD_0"] = json!(texcoord);
+    assert_eq!(
+        corner_tangents(&dir, &overlapping, "overlapping"),
+        corner_tangents(&dir, &packed, "packed")
+    );
+}

@@ -7,6 +7,7 @@ use std::collections::HashMap;
 use crate::entry::validate::check_len;
 use crate::kernel::error::{Buffer, Error};
 use crate::kernel::mesh::Mesh;
+use crate::kernel::simd::{self, PREFETCH_CORNERS};
 use crate::kernel::views::strided::Strided;
 
 /// The split mesh: a new index buffer, and the vertex each appended vertex copies.
@@ -98,6 +99,10 @@ pub fn split_corners(mesh: &Mesh, corner_tangents: &Strided<[f32; 4]>) -> Result
     // Output indices are u32: vertex_count + appended must stay within 2^32.
     let index_limit = u64::from(u32::MAX) + 1;
     for c in 0..corner_count {
+        // The vertices are scattered: each one's entry is asked for ahead of its corner.
+        if c + PREFETCH_CORNERS < corner_count {
+            simd::prefetch(&first, mesh.indices.corner(c + PREFETCH_CORNERS));
+        }
         let v = mesh.indices.corner(c);
         let bits = corner_tangents.get(c).map(f32::to_bits);
         let index = match first[v] {

@@ -71,6 +71,10 @@ unsafe fn with_avx2<R>(kernel: impl FnOnce() -> R) -> R {
     kernel()
 }
 
+/// How many corners ahead a loop over corners asks for what the later corner's vertex reads
+/// ([`prefetch`]): enough for the wait for memory to overlap the work on the corners between.
+pub(crate) const PREFETCH_CORNERS: usize = 16;
+
 /// Asks the CPU to bring `items[index]` into its cache ahead of a read, so that lookups that
 /// would each wait for memory (a hash table's probes) overlap. A hint: it changes no result.
 #[inline(always)]

@@ -41,15 +41,23 @@ impl Fixture {
         fixture
     }
 
-    /// Adds a bufferView and accessor of raw `bytes`; returns the accessor.
-    pub fn accessor(&mut self, bytes: &[u8], component_type: u32, kind: &str, count: usize, extra: Value) -> usize {
+    /// Adds a bufferView of raw `bytes` (with `byteStride` when given); returns it.
+    pub fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
         while self.bin.len() % 4 != 0 {
             self.bin.push(0);
         }
         let views = self.json["bufferViews"].as_array_mut().unwrap();
         views.push(json!({ "buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len() }));
-        let view = views.len() - 1;
+        if let Some(stride) = stride {
+            views.last_mut().unwrap()["byteStride"] = json!(stride);
+        }
         self.bin.extend_from_slice(bytes);
+        views.len() - 1
+    }
+
+    /// Adds a bufferView and accessor of raw `bytes`; returns the accessor.
+    pub fn accessor(&mut self, bytes: &[u8], component_type: u32, kind: &str, count: usize, extra: Value) -> usize {
+        let view = self.view(bytes, None);
         let mut accessor = json!({ "bufferView": view, "componentType": component_type, "count": count, "type": kind });
         if let (Some(accessor), Some(extra)) = (accessor.as_object_mut(), extra.as_object()) {
             accessor.extend(extra.clone());

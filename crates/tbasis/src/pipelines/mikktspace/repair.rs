@@ -12,6 +12,7 @@ use crate::kernel::frame::{
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::DegeneratePolicy;
 use crate::kernel::report::Report;
+use crate::kernel::simd::PREFETCH_CORNERS;
 use crate::kernel::vector::Vec3;
 
 /// A unit tangent whose component off the normal is below this is along the normal: what is left
@@ -86,35 +87,41 @@ pub(crate) fn repair(
     first_usable: &mut [u32],
     report: &mut Report,
 ) {
-    first_usable.fill(NONE);
+    // The corners' vertices are scattered: each normal is asked for ahead of its corner.
+    let corner_count = tangents.len();
     let mut without_direction = 0usize;
     for (c, tangent) in tangents.iter_mut().enumerate() {
-        let v = mesh.indices.corner(c);
-        let normal = Normal::of_vertex(mesh, v);
-        if !is_kept(*tangent, normal) {
-            report.repaired_corners += 1;
-            match nearest_valid(*tangent, normal) {
-                Some(moved) => *tangent = moved,
-                None => {
-                    without_direction += 1;
-                    continue;
-                }
-            }
+        if c + PREFETCH_CORNERS < corner_count {
+            mesh.normals.prefetch(mesh.indices.corner(c + PREFETCH_CORNERS));
         }
-        if first_usable[v] == NONE {
-            first_usable[v] = c as u32;
+        let normal = Normal::of_vertex(mesh, mesh.indices.corner(c));
+        if is_kept(*tangent, normal) {
+            continue;
         }
+        report.repaired_corners += 1;
+        *tangent = nearest_valid(*tangent, normal).unwrap_or_else(|| {
+            without_direction += 1;
+            WITHOUT_DIRECTION
+        });
     }
     if without_direction == 0 {
         return;
     }
-    // Every corner still not kept has no direction of its own.
-    for c in 0..tangents.len() {
-        let v = mesh.indices.corner(c);
-        let normal = Normal::of_vertex(mesh, v);
-        if is_kept(tangents[c], normal) {
+    // Rare: each vertex's first corner with a tangent, then the corners without one.
+    let has_direction = |tangent: &Vec3| tangent[0].to_bits() != WITHOUT_DIRECTION[0].to_bits();
+    first_usable.fill(NONE);
+    for (c, tangent) in tangents.iter().enumerate() {
+        let first = &mut first_usable[mesh.indices.corner(c)];
+        if *first == NONE && has_direction(tangent) {
+            *first = c as u32;
+        }
+    }
+    for c in 0..corner_count {
+        if has_direction(&tangents[c]) {
             continue;
         }
+        let v = mesh.indices.corner(c);
+        let normal = Normal::of_vertex(mesh, v);
         let fallback = || normal.unit.map_or(NO_NORMAL_TANGENT, fallback_tangent).to_array();
         tangents[c] = match first_usable[v] {
             donor if donor != NONE && policy == DegeneratePolicy::Inherit => {
@@ -124,6 +131,10 @@ pub(crate) fn repair(
         };
     }
 }
+
+/// What a corner without a direction holds between the two passes of [`repair`]: a NaN, which no
+/// kept or moved tangent is.
+const WITHOUT_DIRECTION: Vec3 = [f32::NAN; 3];
 
 #[cfg(test)]
 mod tests {
