@@ -9,7 +9,8 @@
 //!
 //! Prints a Markdown table (docs/gltf.md records a run). Each command runs once untimed (the
 //! first run of a file pays for what the ones after find ready: the input in the page cache,
-//! npx's package lookup), then `RUNS` times; the table gives the median.
+//! npx's package lookup), then `RUNS` times, the two tools taking turns; the table gives the
+//! median.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -40,7 +41,7 @@ fn main() {
     println!("| file | tbasis-gltf | gltf-transform 4.5 `tangents` | ratio |");
     println!("|---|---:|---:|---:|");
     for (name, input) in &inputs {
-        let ours = median(|| {
+        let mut ours = || {
             let out = dir.join("tbasis-out.glb");
             let status = Command::new(&tool)
                 .args(["--overwrite", "-q"])
@@ -49,21 +50,25 @@ fn main() {
                 .arg(&out)
                 .status();
             status.is_ok_and(|s| s.success())
-        });
-        let theirs = npx.then(|| {
-            median(|| {
-                let out = dir.join("gltf-transform-out.glb");
-                let status = Command::new("npx")
-                    .args(["--yes", "@gltf-transform/cli@4.5", "tangents"])
-                    .arg(input)
-                    .arg(&out)
-                    .arg("--overwrite")
-                    .stdout(std::process::Stdio::null())
-                    .status();
-                status.is_ok_and(|s| s.success())
-            })
-        });
+        };
+        let mut theirs = || {
+            let out = dir.join("gltf-transform-out.glb");
+            let status = Command::new("npx")
+                .args(["--yes", "@gltf-transform/cli@4.5", "tangents"])
+                .arg(input)
+                .arg(&out)
+                .arg("--overwrite")
+                .stdout(std::process::Stdio::null())
+                .status();
+            status.is_ok_and(|s| s.success())
+        };
+        let mut commands: Vec<&mut dyn FnMut() -> bool> = vec![&mut ours];
+        if npx {
+            commands.push(&mut theirs);
+        }
+        let times = medians(&mut commands);
         let seconds = |d: Option<Duration>| d.map_or("failed".into(), |d| format!("{:.2} s", d.as_secs_f64()));
+        let (ours, theirs) = (times[0], times.get(1).copied());
         let (theirs_text, ratio) = match theirs {
             Some(theirs) => (
                 seconds(theirs),
@@ -85,21 +90,30 @@ fn tool_path() -> PathBuf {
     release.join(format!("tbasis-gltf{}", std::env::consts::EXE_SUFFIX))
 }
 
-/// The median wall time of `RUNS` runs of `run` after an untimed one, `None` if one fails.
-fn median(mut run: impl FnMut() -> bool) -> Option<Duration> {
-    if !run() {
-        return None;
-    }
-    let mut times = Vec::new();
+/// The median wall time of each command over `RUNS` rounds, after an untimed round; a round runs
+/// every command once, so that a change in the machine's speed during the bench falls on all of
+/// them alike. `None` for a command that fails.
+fn medians(commands: &mut [&mut dyn FnMut() -> bool]) -> Vec<Option<Duration>> {
+    let mut times: Vec<Option<Vec<Duration>>> = commands.iter_mut().map(|run| run().then(Vec::new)).collect();
     for _ in 0..RUNS {
-        let start = Instant::now();
-        if !run() {
-            return None;
+        for (run, times) in commands.iter_mut().zip(times.iter_mut()) {
+            let Some(list) = times else { continue };
+            let start = Instant::now();
+            if run() {
+                list.push(start.elapsed());
+            } else {
+                *times = None;
+            }
         }
-        times.push(start.elapsed());
     }
-    times.sort();
-    Some(times[RUNS / 2])
+    times
+        .into_iter()
+        .map(|list| {
+            let mut list = list?;
+            list.sort();
+            Some(list[RUNS / 2])
+        })
+        .collect()
 }
 
 /// A torus of `(rings + 1) x (segments + 1)` vertices (UV seams duplicated) as a .glb with
