@@ -39,7 +39,7 @@ pub fn load(json: &Value, mut glb_bin: Option<Vec<u8>>, dir: &Path) -> Result<Ve
                 Some(decoded) => decoded.map_err(|e| format!("buffer {i}: {e}"))?,
                 None if uri::is_relative_file(text) => {
                     let path = uri::resolve(dir, text);
-                    std::fs::read(&path)
+                    crate::io::read_file(&path)
                         .map_err(|e| format!("missing buffer {i}: cannot read {}: {e}", path.display()))?
                 }
                 None => return Err(format!("buffer {i}: cannot load {text}: only files and data URIs")),

@@ -44,11 +44,17 @@ pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
         _ => PathBuf::from("."),
     };
     let file = File::open(path).map_err(cannot_read)?;
-    let length = usize::try_from(file.metadata().map_err(cannot_read)?.len()).map_err(|_| "too large to read")?;
+    let Some(length) = regular_file_length(&file).map_err(cannot_read)? else {
+        return parse(read_to_end(&file).map_err(cannot_read)?, dir, allow_outside_uris);
+    };
     // A GLB's binary chunk is read straight into its own buffer; everything else whole.
     let head = read_range(&file, 0..length.min(GLB_HEAD)).map_err(cannot_read)?;
     if !head.starts_with(b"glTF") || head.len() < GLB_HEAD {
-        return parse(fs::read(path).map_err(cannot_read)?, dir, allow_outside_uris);
+        return parse(
+            read_range(&file, 0..length).map_err(cannot_read)?,
+            dir,
+            allow_outside_uris,
+        );
     }
     let json_length = u32::from_le_bytes([head[12], head[13], head[14], head[15]]) as usize;
     // Up to the binary chunk's header, included.
@@ -60,6 +66,34 @@ pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
         .transpose()
         .map_err(cannot_read)?;
     finish(Kind::Glb, parse_json(&head[json_range])?, bin, dir, allow_outside_uris)
+}
+
+/// The bytes of the file at `path`: a regular file as [`read_range`] reads, anything else to its
+/// end.
+pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    let file = File::open(path)?;
+    match regular_file_length(&file)? {
+        Some(length) => read_range(&file, 0..length),
+        None => read_to_end(&file),
+    }
+}
+
+/// What is left of a file whose length is not known before it is read.
+fn read_to_end(mut file: &File) -> std::io::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    std::io::Read::read_to_end(&mut file, &mut bytes)?;
+    Ok(bytes)
+}
+
+/// The length of `file` when it is known before it is read: a regular file's, unless 0 (the
+/// files of /proc and /sys say 0 and have bytes).
+fn regular_file_length(file: &File) -> std::io::Result<Option<usize>> {
+    let metadata = file.metadata()?;
+    if !metadata.is_file() || metadata.len() == 0 {
+        return Ok(None);
+    }
+    let length = usize::try_from(metadata.len()).map_err(|_| std::io::ErrorKind::OutOfMemory)?;
+    Ok(Some(length))
 }
 
 /// Bytes of a GLB before its JSON: the header and the JSON chunk's header.
@@ -406,6 +440,16 @@ mod tests {
             let from_file = summary(read(&path, false));
             let from_bytes = summary(parse(bytes, dir.path().to_path_buf(), false));
             assert_eq!(from_file, from_bytes, "case {k}");
+        }
+        // A file whose length is not known before it is read (0 here, with bytes): read to its
+        // end all the same.
+        #[cfg(target_os = "linux")]
+        {
+            let status = Path::new("/proc/self/status");
+            let bytes = fs::read(status).unwrap();
+            assert!(!bytes.is_empty() && fs::metadata(status).unwrap().len() == 0);
+            let from_proc = summary(read(status, false));
+            assert_eq!(from_proc, summary(parse(bytes, PathBuf::from("/proc/self"), false)));
         }
     }
 }
