@@ -250,7 +250,7 @@ fn read_index(bytes: &[u8]) -> u32 {
 }
 
 /// Accessor `index` as `N` floats per element: floats where they lie in the buffer when they can
-/// be read in place ([`in_place`]), else converted into `storage`: normalized integers mapped to
+/// be read in place (`in_place`), else converted into `storage`: normalized integers mapped to
 /// [0, 1] or [-1, 1], other integers (KHR_mesh_quantization) converted.
 pub fn floats<'a, const N: usize>(
     json: &Value,
@@ -294,7 +294,7 @@ where
 }
 
 /// Accessor `index` as indices (unsigned byte, short or int scalars): 16- and 32-bit indices where
-/// they lie in the buffer when they can be read in place ([`in_place`]), else converted into
+/// they lie in the buffer when they can be read in place (`in_place`), else converted into
 /// `storage`.
 pub fn indices<'a>(
     json: &Value,

@@ -68,7 +68,7 @@ pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
     finish(Kind::Glb, parse_json(&head[json_range])?, bin, dir, allow_outside_uris)
 }
 
-/// The bytes of the file at `path`: a regular file as [`read_range`] reads, anything else to its
+/// The bytes of the file at `path`: a regular file as `read_range` reads, anything else to its
 /// end.
 pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
     let file = File::open(path)?;
