@@ -306,11 +306,13 @@ pub fn indices<'a>(
     if layout.components != 1 || !layout.component.is_index() {
         return Err(format!("accessor {index}: indices must be unsigned scalars"));
     }
-    if let Some(view) = in_place(json, buffers, index, ComponentType::UnsignedShort)? {
-        return Ok(Indices::U16(view));
-    }
-    if let Some(view) = in_place(json, buffers, index, ComponentType::UnsignedInt)? {
-        return Ok(Indices::U32(view));
+    let read_in_place = match layout.component {
+        ComponentType::UnsignedShort => in_place(json, buffers, index, layout.component)?.map(Indices::U16),
+        ComponentType::UnsignedInt => in_place(json, buffers, index, layout.component)?.map(Indices::U32),
+        _ => None,
+    };
+    if let Some(indices) = read_in_place {
+        return Ok(indices);
     }
     let (layout, bytes) = packed(json, buffers, index)?;
     *storage = bytes.chunks_exact(layout.component.size()).map(read_index).collect();

@@ -44,18 +44,15 @@ pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
         _ => PathBuf::from("."),
     };
     let file = File::open(path).map_err(cannot_read)?;
-    let Some(length) = regular_file_length(&file).map_err(cannot_read)? else {
-        return parse(read_to_end(&file).map_err(cannot_read)?, dir, allow_outside_uris);
-    };
     // A GLB's binary chunk is read straight into its own buffer; everything else whole.
-    let head = read_range(&file, 0..length.min(GLB_HEAD)).map_err(cannot_read)?;
-    if !head.starts_with(b"glTF") || head.len() < GLB_HEAD {
-        return parse(
-            read_range(&file, 0..length).map_err(cannot_read)?,
-            dir,
-            allow_outside_uris,
-        );
-    }
+    let length = regular_file_length(&file).map_err(cannot_read)?;
+    let head = match length {
+        Some(length) => read_range(&file, 0..length.min(GLB_HEAD)).map_err(cannot_read)?,
+        None => Vec::new(),
+    };
+    let (Some(length), true) = (length, head.starts_with(b"glTF") && head.len() == GLB_HEAD) else {
+        return parse(read_whole(&file).map_err(cannot_read)?, dir, allow_outside_uris);
+    };
     let json_length = u32::from_le_bytes([head[12], head[13], head[14], head[15]]) as usize;
     // Up to the binary chunk's header, included.
     let before_bin = (GLB_HEAD + json_length).saturating_add(8).min(length);
@@ -71,18 +68,20 @@ pub fn read(path: &Path, allow_outside_uris: bool) -> Result<Asset, String> {
 /// The bytes of the file at `path`: a regular file as `read_range` reads, anything else to its
 /// end.
 pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
-    let file = File::open(path)?;
-    match regular_file_length(&file)? {
-        Some(length) => read_range(&file, 0..length),
-        None => read_to_end(&file),
-    }
+    read_whole(&File::open(path)?)
 }
 
-/// What is left of a file whose length is not known before it is read.
-fn read_to_end(mut file: &File) -> std::io::Result<Vec<u8>> {
-    let mut bytes = Vec::new();
-    std::io::Read::read_to_end(&mut file, &mut bytes)?;
-    Ok(bytes)
+/// All of `file`: a regular file as `read_range` reads; one whose length is not known before it
+/// is read, to its end.
+fn read_whole(mut file: &File) -> std::io::Result<Vec<u8>> {
+    match regular_file_length(file)? {
+        Some(length) => read_range(file, 0..length),
+        None => {
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(&mut file, &mut bytes)?;
+            Ok(bytes)
+        }
+    }
 }
 
 /// The length of `file` when it is known before it is read: a regular file's, unless 0 (the
