@@ -64,34 +64,25 @@ fn is_fallback(buffer: &Value) -> bool {
         .any(|name| extensions[name]["fallback"].as_bool() == Some(true))
 }
 
-/// The new data, and the JSON of the bufferViews and accessors that describe it.
-pub struct Appender {
-    /// The bytes, to be placed at `base` in buffer `buffer`.
-    pub bytes: Vec<u8>,
-    pub buffer: usize,
-    base: usize,
-    first_view: usize,
-    views: Vec<Value>,
-    first_accessor: usize,
+/// One primitive's new data, and the bufferViews and accessors that describe it, numbered from 0
+/// within it: primitives fill theirs on separate threads, then [`place`] puts them one after the
+/// other in the document.
+#[derive(Default)]
+pub struct Segment {
+    bytes: Vec<u8>,
+    views: Vec<View>,
+    /// Each one's `bufferView` is an index into `views`.
     accessors: Vec<Value>,
 }
 
-impl Appender {
-    /// Data placed at byte `base` (a multiple of 4) of buffer `buffer`, with bufferViews and
-    /// accessors numbered from the documents' current counts.
-    pub fn new(buffer: usize, base: usize, first_view: usize, first_accessor: usize) -> Self {
-        debug_assert_eq!(base % 4, 0);
-        Appender {
-            bytes: Vec::new(),
-            buffer,
-            base,
-            first_view,
-            views: Vec::new(),
-            first_accessor,
-            accessors: Vec::new(),
-        }
-    }
+struct View {
+    offset: usize,
+    length: usize,
+    stride: Option<usize>,
+    target: u64,
+}
 
+impl Segment {
     /// Appends a bufferView of `length` zero bytes (4-byte aligned, as vertex attributes need)
     /// and returns its index and the bytes to fill in place; `stride` is written for vertex data
     /// whose elements are padded.
@@ -102,52 +93,92 @@ impl Appender {
         target: u64,
     ) -> Result<(usize, &mut [u8]), String> {
         let offset = self.bytes.len();
-        // The buffer's new end must fit too: `end` adds it up unchecked.
         let padded_end = offset
             .checked_add(length)
             .and_then(|end| end.checked_next_multiple_of(4))
-            .filter(|&end| self.base.checked_add(end).is_some())
-            .ok_or_else(|| format!("{length} more bytes do not fit in a buffer"))?;
+            .ok_or_else(|| too_long(length))?;
         self.bytes.resize(padded_end, 0);
-        let mut view = json!({
-            "buffer": self.buffer,
-            "byteOffset": self.base + offset,
-            "byteLength": length,
+        self.views.push(View {
+            offset,
+            length,
+            stride,
+            target,
         });
-        if let Some(stride) = stride {
-            view["byteStride"] = json!(stride);
-        }
-        view["target"] = json!(target);
-        self.views.push(view);
-        Ok((
-            self.first_view + self.views.len() - 1,
-            &mut self.bytes[offset..offset + length],
-        ))
+        Ok((self.views.len() - 1, &mut self.bytes[offset..offset + length]))
     }
 
     /// Appends an accessor and returns its index.
     pub fn accessor(&mut self, accessor: Value) -> usize {
         self.accessors.push(accessor);
-        self.first_accessor + self.accessors.len() - 1
+        self.accessors.len() - 1
     }
+}
 
-    /// The buffer's byteLength once the data is placed.
-    pub fn end(&self) -> usize {
-        self.base + self.bytes.len()
-    }
+fn too_long(length: usize) -> String {
+    format!("{length} more bytes do not fit in a buffer")
+}
 
-    /// Adds the new bufferViews and accessors to the document.
-    pub fn append_json(self, json: &mut Value) -> Vec<u8> {
-        for (key, items) in [("bufferViews", self.views), ("accessors", self.accessors)] {
-            let list = json
-                .as_object_mut()
-                .expect("the document is an object")
-                .entry(key)
-                .or_insert_with(|| Value::Array(Vec::new()));
-            if let Value::Array(list) = list {
-                list.extend(items);
+/// The segments placed: their bytes, one after the other, and where each one's accessors begin.
+pub struct Placed {
+    pub pieces: Vec<Vec<u8>>,
+    /// The buffer's byteLength with the new data.
+    pub end: usize,
+    /// The document's index of each segment's first accessor.
+    pub first_accessors: Vec<usize>,
+}
+
+/// Places `segments` one after the other from byte `base` (a multiple of 4) of buffer `buffer`,
+/// and appends their bufferViews and accessors to the document's, after those it has (which are
+/// never renumbered).
+pub fn place(json: &mut Value, segments: Vec<Segment>, buffer: usize, base: usize) -> Result<Placed, String> {
+    debug_assert_eq!(base % 4, 0);
+    let mut first_view = document::count(json, "bufferViews");
+    let mut first_accessor = document::count(json, "accessors");
+    let (mut views, mut accessors) = (Vec::new(), Vec::new());
+    let mut placed = Placed {
+        pieces: Vec::with_capacity(segments.len()),
+        end: base,
+        first_accessors: Vec::with_capacity(segments.len()),
+    };
+    for segment in segments {
+        let segment_base = placed.end;
+        // The buffer's new end must fit: the offsets below add up to it.
+        placed.end = segment_base
+            .checked_add(segment.bytes.len())
+            .ok_or_else(|| too_long(segment.bytes.len()))?;
+        for view in &segment.views {
+            let mut json = json!({
+                "buffer": buffer,
+                "byteOffset": segment_base + view.offset,
+                "byteLength": view.length,
+            });
+            if let Some(stride) = view.stride {
+                json["byteStride"] = json!(stride);
             }
+            json["target"] = json!(view.target);
+            views.push(json);
         }
-        self.bytes
+        placed.first_accessors.push(first_accessor);
+        first_accessor += segment.accessors.len();
+        for mut accessor in segment.accessors {
+            let local = accessor["bufferView"]
+                .as_u64()
+                .expect("a segment's accessor names its view");
+            accessor["bufferView"] = json!(first_view + local as usize);
+            accessors.push(accessor);
+        }
+        first_view += segment.views.len();
+        placed.pieces.push(segment.bytes);
     }
+    for (key, items) in [("bufferViews", views), ("accessors", accessors)] {
+        let list = json
+            .as_object_mut()
+            .expect("the document is an object")
+            .entry(key)
+            .or_insert_with(|| Value::Array(Vec::new()));
+        if let Value::Array(list) = list {
+            list.extend(items);
+        }
+    }
+    Ok(placed)
 }

@@ -1,5 +1,5 @@
-//! One file, start to end: read, plan, compute the primitives (in parallel), append the new data,
-//! point URIs at the right files, write.
+//! One file, start to end: read, plan, compute the primitives and fill their new data (in
+//! parallel), place that data, point URIs at the right files, write.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -12,10 +12,10 @@ use tbasis::Options;
 
 use crate::accessor;
 use crate::args::Job;
-use crate::buffers::Appender;
+use crate::buffers::{self, Segment};
 use crate::document::{self, Buffer};
 use crate::io::{self, Asset, Kind};
-use crate::primitive::{self, Computed, Edit, Workspace};
+use crate::primitive::{self, Edit, Workspace};
 use crate::prune;
 use crate::select::{self, Key, Plan, Source};
 use crate::uri;
@@ -104,11 +104,12 @@ pub fn convert_asset(
         }
     }
 
-    let computed = compute_all(&asset, &sources, settings)?;
+    let done = compute_all(&asset, &sources, settings)?;
     let original_buffers = document::count(&asset.json, "buffers");
+    let any_done = !done.is_empty();
     let mut grown = None;
-    if !computed.is_empty() {
-        grown = append(&mut asset, &sources, &users, &computed, &mut outcome)?;
+    if any_done {
+        grown = append(&mut asset, &users, done, &mut outcome)?;
     }
     let Some(output) = output else {
         return Ok(outcome);
@@ -116,7 +117,7 @@ pub fn convert_asset(
     let side_file = finish_buffers(&mut asset, original_buffers, output)?;
     rebase_uris(&mut asset, original_buffers, output)?;
     // After the buffers are placed: pruning keeps the new buffer last (`finish_buffers`).
-    if let Some(used_before) = used_before.filter(|_| !computed.is_empty()) {
+    if let Some(used_before) = used_before.filter(|_| any_done) {
         prune::remove_unused(&mut asset.json, &mut asset.buffers, &used_before);
     }
     let mut files: Vec<(PathBuf, Vec<&[u8]>)> = Vec::new();
@@ -153,9 +154,17 @@ fn primitive_name(json: &Value, m: usize, p: usize) -> String {
     }
 }
 
-/// Every source's tangents and split, on up to `settings.threads` threads; the first error wins.
-fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result<Vec<Computed>, String> {
-    let results: Vec<Mutex<Option<Result<Computed, String>>>> = sources.iter().map(|_| Mutex::new(None)).collect();
+/// A primitive computed: its new data, and how it changes the document.
+struct Done {
+    edit: Edit,
+    segment: Segment,
+    repaired_corners: usize,
+}
+
+/// Every source's tangents, split and new data, on up to `settings.threads` threads; the first
+/// error wins.
+fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result<Vec<Done>, String> {
+    let results: Vec<Mutex<Option<Result<Done, String>>>> = sources.iter().map(|_| Mutex::new(None)).collect();
     // Largest first: the threads finish together, and each thread's workspace is as large as it
     // will be at its first primitive, so that the later ones reuse its pages.
     let mut order: Vec<usize> = (0..sources.len()).collect();
@@ -166,11 +175,24 @@ fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result
     // are the same on any thread count.
     let per_call = (settings.threads / sources.len().max(1)).max(1);
     let options = settings.options.with_threads(per_call as u32);
+    let process = |source: &Source, workspace: &mut Workspace| -> Result<Done, String> {
+        let computed = primitive::compute(source, &asset.json, &asset.buffers, &options, workspace)?;
+        // In the worker, not after all primitives: a thread out of primitives to compute is
+        // not idle while another fills its new data.
+        let mut segment = Segment::default();
+        let edit = primitive::edit(source, &computed, &asset.json, &asset.buffers, &mut segment)?;
+        let repaired_corners = computed.report.repaired_corners;
+        Ok(Done {
+            edit,
+            segment,
+            repaired_corners,
+        })
+    };
     let work = || {
         let mut workspace = Workspace::default();
         while let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
             let source = &sources[k];
-            let result = primitive::compute(source, &asset.json, &asset.buffers, &options, &mut workspace)
+            let result = process(source, &mut workspace)
                 .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)));
             *results[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(result);
         }
@@ -192,40 +214,31 @@ fn compute_all(asset: &Asset, sources: &[Source], settings: &Settings) -> Result
         .collect()
 }
 
-/// Appends the new accessors and data and points the primitives at them; returns what
-/// [`place`] returns.
+/// Places the new data and accessors, in source order, and points the primitives at them;
+/// returns what [`place`] returns.
 fn append(
     asset: &mut Asset,
-    sources: &[Source],
     users: &[Vec<(usize, usize)>],
-    computed: &[Computed],
+    done: Vec<Done>,
     outcome: &mut Outcome,
 ) -> Result<Option<Grown>, String> {
     let (buffer, old_length) = data_buffer(asset)?;
-    let base = old_length.next_multiple_of(4);
-    let mut appender = Appender::new(
-        buffer,
-        base,
-        document::count(&asset.json, "bufferViews"),
-        document::count(&asset.json, "accessors"),
-    );
-    let mut edits: Vec<Edit> = Vec::with_capacity(sources.len());
-    for (source, computed) in sources.iter().zip(computed) {
-        let edit = primitive::edit(source, computed, &asset.json, &asset.buffers, &mut appender)
-            .map_err(|e| format!("{}: {e}", primitive_name(&asset.json, source.mesh, source.primitive)))?;
-        outcome.repaired_corners += computed.report.repaired_corners;
-        outcome.vertices_added += edit.vertices_added;
-        edits.push(edit);
+    let mut edits = Vec::with_capacity(done.len());
+    let mut segments = Vec::with_capacity(done.len());
+    for done in done {
+        outcome.repaired_corners += done.repaired_corners;
+        outcome.vertices_added += done.edit.vertices_added;
+        edits.push(done.edit);
+        segments.push(done.segment);
     }
-    for (edit, users) in edits.iter().zip(users) {
+    let placed = buffers::place(&mut asset.json, segments, buffer, old_length.next_multiple_of(4))?;
+    for ((edit, users), &first_accessor) in edits.iter().zip(users).zip(&placed.first_accessors) {
         for &(m, p) in users {
-            primitive::apply(&mut asset.json["meshes"][m]["primitives"][p], edit);
+            primitive::apply(&mut asset.json["meshes"][m]["primitives"][p], edit, first_accessor);
             outcome.done += 1;
         }
     }
-    let length = appender.end();
-    let bytes = appender.append_json(&mut asset.json);
-    Ok(place(asset, buffer, old_length, length, bytes))
+    Ok(place(asset, buffer, old_length, placed.end, placed.pieces))
 }
 
 /// The buffer the new data goes into, and its length so far: the GLB's own buffer, or a new
@@ -241,18 +254,18 @@ fn data_buffer(asset: &Asset) -> Result<(usize, usize), String> {
 }
 
 /// New data for the GLB's own buffer, written after its old bytes and their padding (not copied
-/// onto them).
+/// onto them), in pieces.
 struct Grown {
     old_length: usize,
-    bytes: Vec<u8>,
+    pieces: Vec<Vec<u8>>,
 }
 
 /// Stores the new data in the buffer `data_buffer` chose: a new buffer, or the GLB's own, whose
 /// new data is returned.
-fn place(asset: &mut Asset, buffer: usize, old_length: usize, length: usize, bytes: Vec<u8>) -> Option<Grown> {
+fn place(asset: &mut Asset, buffer: usize, old_length: usize, length: usize, pieces: Vec<Vec<u8>>) -> Option<Grown> {
     if buffer < asset.buffers.len() {
         asset.json["buffers"][buffer]["byteLength"] = json!(length);
-        Some(Grown { old_length, bytes })
+        Some(Grown { old_length, pieces })
     } else {
         let list = asset
             .json
@@ -264,7 +277,7 @@ fn place(asset: &mut Asset, buffer: usize, old_length: usize, length: usize, byt
             // Its URI (none for a GLB's own buffer) is set by `finish_buffers`.
             list.push(json!({ "byteLength": length }));
         }
-        asset.buffers.push(Some(bytes));
+        asset.buffers.push(Some(pieces.concat()));
         None
     }
 }
@@ -370,6 +383,9 @@ fn glb_bin<'a>(asset: &'a Asset, grown: Option<&'a Grown>) -> Option<Vec<&'a [u8
             let length = first["byteLength"].as_u64()? as usize;
             vec![&data[..length.min(data.len())]]
         }
-        Some(Grown { old_length, bytes }) => vec![&data[..*old_length], io::glb_padding(*old_length), bytes],
+        Some(Grown { old_length, pieces }) => [&data[..*old_length], io::glb_padding(*old_length)]
+            .into_iter()
+            .chain(pieces.iter().map(Vec::as_slice))
+            .collect(),
     })
 }

@@ -8,7 +8,7 @@ use tbasis::{copy_split_vertices, split_corners, Indices, Mesh, Options, Report,
 use tbasis::{Strided, StridedMut};
 
 use crate::accessor::{self, Buffers, Layout};
-use crate::buffers::Appender;
+use crate::buffers::Segment;
 use crate::document::{ComponentType, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
 use crate::select::Source;
 
@@ -25,7 +25,7 @@ pub struct Computed {
     pub report: Report,
 }
 
-/// What replaces the primitive's accessors.
+/// What replaces the primitive's accessors: indices of accessors in its [`Segment`].
 pub struct Edit {
     /// New accessors for attributes (empty when no vertex was split: the old ones still fit).
     pub attributes: Vec<(String, usize)>,
@@ -119,19 +119,19 @@ pub fn compute(
     })
 }
 
-/// The new accessors for `computed`: TANGENT always; when vertices were appended, every vertex
+/// The new accessors for `computed`, in `segment`: TANGENT always; when vertices were appended, every vertex
 /// attribute, morph target attribute and the indices too, as copies with the new vertices added.
 pub fn edit(
     source: &Source,
     computed: &Computed,
     json: &Value,
     buffers: &Buffers,
-    appender: &mut Appender,
+    segment: &mut Segment,
 ) -> Result<Edit, String> {
     let total = computed.tangents.len();
-    let (view, bytes) = appender.view_mut(byte_length(total, 16)?, None, ARRAY_BUFFER)?;
+    let (view, bytes) = segment.view_mut(byte_length(total, 16)?, None, ARRAY_BUFFER)?;
     write_le(bytes, computed.tangents.iter().flatten(), |f| f.to_le_bytes());
-    let tangent = appender.accessor(json!({
+    let tangent = segment.accessor(json!({
         "bufferView": view,
         "componentType": ComponentType::Float.code(),
         "count": total,
@@ -154,7 +154,7 @@ pub fn edit(
         if let Some(&done) = copies.get(&index) {
             return Ok(done);
         }
-        let done = copy_attribute(json, buffers, index, computed.vertex_count, sources, appender)
+        let done = copy_attribute(json, buffers, index, computed.vertex_count, sources, segment)
             .map_err(|e| format!("{name}: {e}"))?;
         copies.insert(index, done);
         Ok(done)
@@ -174,7 +174,7 @@ pub fn edit(
                 .collect::<Result<Vec<_>, String>>()
         })
         .collect::<Result<Vec<_>, String>>()?;
-    let indices = Some(write_indices(computed, appender)?);
+    let indices = Some(write_indices(computed, segment)?);
     Ok(Edit {
         attributes,
         tangent,
@@ -184,20 +184,22 @@ pub fn edit(
     })
 }
 
-/// Writes `edit` into the primitive's JSON.
-pub fn apply(primitive: &mut Value, edit: &Edit) {
+/// Writes `edit` into the primitive's JSON, its segment's accessors numbered from
+/// `first_accessor`.
+pub fn apply(primitive: &mut Value, edit: &Edit, first_accessor: usize) {
+    let accessor = |index: usize| json!(first_accessor + index);
     let attributes = object(&mut primitive["attributes"]);
     for (name, index) in &edit.attributes {
-        attributes.insert(name.clone(), json!(index));
+        attributes.insert(name.clone(), accessor(*index));
     }
-    attributes.insert("TANGENT".into(), json!(edit.tangent));
+    attributes.insert("TANGENT".into(), accessor(edit.tangent));
     if let Some(indices) = edit.indices {
-        primitive["indices"] = json!(indices);
+        primitive["indices"] = accessor(indices);
     }
     for (k, target) in edit.targets.iter().enumerate() {
         let map = object(&mut primitive["targets"][k]);
         for (name, index) in target {
-            map.insert(name.clone(), json!(index));
+            map.insert(name.clone(), accessor(*index));
         }
     }
 }
@@ -216,14 +218,14 @@ fn copy_attribute(
     index: usize,
     vertex_count: usize,
     sources: &[u32],
-    appender: &mut Appender,
+    segment: &mut Segment,
 ) -> Result<usize, String> {
     let layout = accessor::layout(json, index)?;
     let size = layout.element_size();
     // Vertex attribute elements must start on 4-byte boundaries.
     let stride = size.next_multiple_of(4);
     let total = vertex_count.checked_add(sources.len()).ok_or("too many vertices")?;
-    let (view, data) = appender.view_mut(
+    let (view, data) = segment.view_mut(
         byte_length(total, stride)?,
         (stride != size).then_some(stride),
         ARRAY_BUFFER,
@@ -246,11 +248,11 @@ fn copy_attribute(
             accessor[key] = value.clone();
         }
     }
-    Ok(appender.accessor(accessor))
+    Ok(segment.accessor(accessor))
 }
 
 /// The split indices as a new accessor, of the original type where every index fits it.
-fn write_indices(computed: &Computed, appender: &mut Appender) -> Result<usize, String> {
+fn write_indices(computed: &Computed, segment: &mut Segment) -> Result<usize, String> {
     let largest_index = computed.tangents.len().saturating_sub(1) as u64;
     let original = computed.index_type.unwrap_or(ComponentType::UnsignedInt);
     let component = [ComponentType::UnsignedByte, ComponentType::UnsignedShort]
@@ -259,13 +261,13 @@ fn write_indices(computed: &Computed, appender: &mut Appender) -> Result<usize, 
         .unwrap_or(ComponentType::UnsignedInt);
     let indices = &computed.split.indices;
     let length = byte_length(indices.len(), component.size())?;
-    let (view, bytes) = appender.view_mut(length, None, ELEMENT_ARRAY_BUFFER)?;
+    let (view, bytes) = segment.view_mut(length, None, ELEMENT_ARRAY_BUFFER)?;
     match component {
         ComponentType::UnsignedByte => write_le(bytes, indices, |&i| [i as u8]),
         ComponentType::UnsignedShort => write_le(bytes, indices, |&i| (i as u16).to_le_bytes()),
         _ => write_le(bytes, indices, |&i| i.to_le_bytes()),
     }
-    Ok(appender.accessor(json!({
+    Ok(segment.accessor(json!({
         "bufferView": view,
         "componentType": component.code(),
         "count": indices.len(),
