@@ -3,6 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p tbasis-compare --example bench [-- [--quick] [FILTER]]
+//! cargo run --release -p tbasis-compare --example bench -- --calls COUNT CONFIGURATION [FILTER]
 //! ```
 //!
 //! Scenes: the irregular torus of `docs/chart.md` at about 1M vertices (`crates/test-support/src/scenes.rs`),
@@ -15,7 +16,9 @@
 //! `FILTER` runs only the scenes whose name contains it (`torus`, `asset`, `cube`, `grid`) and
 //! rewrites no part of `docs/bench.md` but the collapsed grid's section, when it ran. `--quick`
 //! times [`QUICK_ROUNDS`] rounds per scene (mikktspace.c in one) and writes `target/bench/bench.md`
-//! instead, to check the output in about a minute; its figures are not worth quoting.
+//! instead, to check the output in about a minute; its figures are not worth quoting. `--calls`
+//! times one configuration (named as in the tables) `COUNT` times in a row in one process and
+//! prints every call's time, to show how the times of one configuration move ([`consecutive_calls`]).
 //!
 //! Every configuration runs on the same buffers, interleaved round by round so that a drift in the
 //! machine's speed touches them all alike; each time is the median over the rounds. Besides
@@ -105,6 +108,9 @@ const QUICK_ROUNDS: usize = 3;
 
 /// The flag of a quick run.
 const QUICK_FLAG: &str = "--quick";
+
+/// The flag of a run of consecutive calls of one configuration ([`consecutive_calls`]).
+const CALLS_FLAG: &str = "--calls";
 
 /// One array the library reads: a primitive of the asset, or the whole of a generated scene.
 struct Part {
@@ -724,6 +730,59 @@ fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
         .collect()
 }
 
+/// `--calls COUNT CONFIGURATION [FILTER]`: one process calls the configuration the tables name
+/// CONFIGURATION `COUNT` times in a row on each large scene (or those whose name contains
+/// FILTER), after an untimed call, and prints each call's time in order, then their quartiles.
+/// The tables give medians over rounds; this shows how one configuration's times move within a
+/// process. Writes nothing.
+fn consecutive_calls(args: &[String]) -> Result<(), String> {
+    let usage = || format!("usage: bench {CALLS_FLAG} COUNT CONFIGURATION [FILTER]");
+    let (Some(count), Some(name), None) = (
+        args.first().and_then(|n| n.parse::<usize>().ok()).filter(|&n| n > 0),
+        args.get(1),
+        args.get(3),
+    ) else {
+        return Err(usage());
+    };
+    let configs = configs();
+    let Some(config) = configs.iter().find(|c| c.name == *name) else {
+        let names: Vec<&str> = configs.iter().map(|c| c.name.as_str()).collect();
+        return Err(format!(
+            "{}\nno configuration {name:?}; they are: {}",
+            usage(),
+            names.join("; ")
+        ));
+    };
+    let filter = args.get(2);
+    println!("{}; load average {}", machine(), load_average());
+    let builders: [(&str, SceneBuilder); 2] = [("torus", || Ok(torus())), ("asset", asset)];
+    for (what, build) in builders {
+        if filter.is_some_and(|f| !what.contains(f.as_str())) {
+            continue;
+        }
+        let scene = build().map_err(|why| format!("{what}: {why}"))?;
+        let mut outputs = Outputs::of(&scene);
+        run(config.generator, &scene, &mut outputs, 1);
+        let per_vertex = |time: Duration| ns(time) / scene.vertices() as f64;
+        let times: Vec<f64> = (0..count)
+            .map(|_| per_vertex(run(config.generator, &scene, &mut outputs, 1).0))
+            .collect();
+        println!(
+            "\n{}\n{name}, {count} calls in a row, ns/vertex in order:",
+            scene.title()
+        );
+        for row in times.chunks(12) {
+            let row: Vec<String> = row.iter().map(|t| format!("{t:.1}")).collect();
+            println!("  {}", row.join(" "));
+        }
+        let mut sorted = times;
+        sorted.sort_by(f64::total_cmp);
+        let [low, q1, median, q3, high] = [0.0, 0.25, 0.5, 0.75, 1.0].map(|q| quantile(&sorted, q));
+        println!("fastest {low:.1}, quartiles {q1:.1} / {median:.1} / {q3:.1}, slowest {high:.1}");
+    }
+    Ok(())
+}
+
 /// Vertices where LENGYEL+LEGACY and the C port differ in any bit (the library promises none).
 fn legacy_mismatches(scene: &Scene) -> usize {
     let mut mine = Outputs::of(scene);
@@ -880,10 +939,17 @@ impl Bandwidth {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().is_some_and(|a| a == CALLS_FLAG) {
+        if let Err(why) = consecutive_calls(&args[1..]) {
+            eprintln!("{why}");
+            std::process::exit(2);
+        }
+        return;
+    }
     let quick = args.iter().any(|a| a == QUICK_FLAG);
     let filter = args.iter().find(|a| *a != QUICK_FLAG).cloned();
     if args.len() > usize::from(quick) + 1 || filter.as_deref().is_some_and(|f| f.starts_with('-')) {
-        eprintln!("usage: bench [{QUICK_FLAG}] [FILTER]");
+        eprintln!("usage: bench [{QUICK_FLAG}] [FILTER] | {CALLS_FLAG} COUNT CONFIGURATION [FILTER]");
         std::process::exit(2);
     }
     // A quick run checks the output: it leaves the record in docs/ alone.
