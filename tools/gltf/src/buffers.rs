@@ -65,7 +65,7 @@ fn is_fallback(buffer: &Value) -> bool {
 }
 
 /// One primitive's new data, and the bufferViews and accessors that describe it, numbered from 0
-/// within it: primitives fill theirs on separate threads, then [`place`] puts them one after the
+/// within it: primitives fill theirs on separate threads, then [`append_segments`] puts them one after the
 /// other in the document.
 #[derive(Default)]
 pub struct Segment {
@@ -130,7 +130,7 @@ pub struct Placed {
 /// Places `segments` one after the other from byte `base` (a multiple of 4) of buffer `buffer`,
 /// and appends their bufferViews and accessors to the document's, after those it has (which are
 /// never renumbered).
-pub fn place(json: &mut Value, segments: Vec<Segment>, buffer: usize, base: usize) -> Result<Placed, String> {
+pub fn append_segments(json: &mut Value, segments: Vec<Segment>, buffer: usize, base: usize) -> Result<Placed, String> {
     debug_assert_eq!(base % 4, 0);
     let mut first_view = document::count(json, "bufferViews");
     let mut first_accessor = document::count(json, "accessors");

@@ -231,7 +231,7 @@ fn append(
         edits.push(done.edit);
         segments.push(done.segment);
     }
-    let placed = buffers::place(&mut asset.json, segments, buffer, old_length.next_multiple_of(4))?;
+    let placed = buffers::append_segments(&mut asset.json, segments, buffer, old_length.next_multiple_of(4))?;
     for ((edit, users), &first_accessor) in edits.iter().zip(users).zip(&placed.first_accessors) {
         for &(m, p) in users {
             primitive::apply(&mut asset.json["meshes"][m]["primitives"][p], edit, first_accessor);
