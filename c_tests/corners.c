@@ -237,14 +237,18 @@ static tbasis_status call_run(fixture *f, tbasis_report *report)
     return tbasis_generate_corners(f->mesh_arg, &f->options, f->output.tangents, f->output.tangents_stride, report);
 }
 
-/* The call must fail with `want` and leave every byte of the arena as it was. */
+/* The call must fail with `want` and leave every byte of the arena, and the report, as it was. */
 static void expect_refused(fixture *f, const char *label, tbasis_status want)
 {
     char what[256];
-    tbasis_report report;
+    tbasis_report report, untouched;
     snprintf(what, sizeof what, "corners, method %u: %s", (unsigned)f->options.method, label);
     expect_status(what, call_run(f, &report), want);
     check(memcmp(&f->before, &f->memory, sizeof f->memory) == 0, "%s: a byte was written", what);
+    /* The header's contract: only these two refusals fill the report. */
+    memset(&untouched, 0x5A, sizeof untouched);
+    if (want != TBASIS_ERROR_INDEX_OUT_OF_RANGE && want != TBASIS_ERROR_DEGENERATE_UV)
+        check(memcmp(&report, &untouched, sizeof report) == 0, "%s: the report was written", what);
 }
 
 /* The call must succeed, write every corner's 16 bytes and nothing else. */

@@ -115,12 +115,21 @@ fn check_needed(exe: &Path, name: &str, statically: bool) {
 /// Installs with the profile of this test, so that the nested cargo build reuses what `cargo test`
 /// and the C harness already built instead of building the library a second time.
 fn install(prefix: &Path) {
+    install_staged(prefix, None);
+}
+
+/// [`install`], with `DESTDIR` set to `stage` when given.
+fn install_staged(prefix: &Path, stage: Option<&Path>) {
     let profile = if release() { "release" } else { "debug" };
     let target_dir = profile_dir().parent().expect("target/<profile>").to_path_buf();
     let mut command = Command::new("bash");
     command.arg(Path::new(CRATE_DIR).join("scripts/install.sh"));
     command.arg(prefix).args(["--profile", profile]);
     command.env("CARGO", env!("CARGO")).env("CARGO_TARGET_DIR", &target_dir);
+    command.env_remove("DESTDIR");
+    if let Some(stage) = stage {
+        command.env("DESTDIR", stage);
+    }
     let output = run_ok(command, "scripts/install.sh");
     for name in LIBRARIES {
         let expected = format!(
@@ -424,6 +433,28 @@ fn installed_layout_and_soname() {
     }
     let (_scratch, prefix) = installed("layout");
     check_layout(&prefix);
+}
+
+/// `DESTDIR` stages the files for packaging: everything goes under it, and the files name the
+/// prefix alone.
+#[test]
+fn destdir_stages_the_files() {
+    let scratch = Scratch::new("destdir");
+    let (stage, prefix) = (scratch.0.join("stage"), scratch.0.join("prefix"));
+    install_staged(&prefix, Some(&stage));
+    assert!(!prefix.exists(), "{} was written", prefix.display());
+    let staged = stage.join(prefix.strip_prefix("/").expect("an absolute prefix"));
+    for name in LIBRARIES {
+        let lib = staged.join("lib");
+        for file in [real_name(name), format!("lib{name}.a")] {
+            assert!(lib.join(&file).is_file(), "{file} is not staged");
+        }
+        assert!(staged.join(format!("include/{name}.h")).is_file());
+        let pc = std::fs::read_to_string(lib.join(format!("pkgconfig/{name}.pc"))).expect("the .pc file");
+        let line = format!("prefix={}", prefix.display());
+        assert!(pc.lines().any(|l| l == line), "{name}.pc lacks `{line}`:\n{pc}");
+    }
+    assert!(staged.join("lib/cmake/tbasis/tbasisConfig.cmake").is_file());
 }
 
 #[test]

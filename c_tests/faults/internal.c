@@ -1,6 +1,6 @@
 /*
  * Every entry point returns TBASIS_ERROR_INTERNAL, and writes nothing, when the library panics
- * inside it: run against a library built with the test-only feature fault-injection, with
+ * inside it (outputs and reports as they were): run against a library built with the test-only feature fault-injection, with
  * TBASIS_INJECT_PANIC set. Without it, the same calls succeed, so the panic is what the statuses
  * show. Prints "internal N" or "ok N" (N calls) and exits 0 when every call agreed.
  */
@@ -25,6 +25,7 @@ int main(void)
     tbasis_mesh mesh;
     tbasis_output output;
     tbasis_status statuses[8];
+    tbasis_report reports[2], untouched;
     const char *name[8] = {"tbasis_generate",          "tbasis_generate_corners",  "tbasis_split_corners",
                            "tbasis_copy_split_vertices", "tbasis_calculate_tangent_array",
                            "tbasis_to_tangent_space",   "tbasis_from_tangent_space", "tbasis_scratch_size"};
@@ -47,8 +48,11 @@ int main(void)
     memset(tangents, 0, sizeof tangents);
     memset(corners, 0, sizeof corners);
 
-    statuses[0] = tbasis_generate(&mesh, NULL, &output, NULL);
-    statuses[1] = tbasis_generate_corners(&mesh, NULL, corners, 16, NULL);
+    memset(reports, 0x5A, sizeof reports);
+    memset(&untouched, 0x5A, sizeof untouched);
+
+    statuses[0] = tbasis_generate(&mesh, NULL, &output, &reports[0]);
+    statuses[1] = tbasis_generate_corners(&mesh, NULL, corners, 16, &reports[1]);
     statuses[2] = tbasis_split_corners(&mesh, corners, 16, new_indices, sources, &appended);
     statuses[3] = tbasis_copy_split_vertices(copy_target, 12, 12, 1, sources, 1);
     statuses[4] = tbasis_calculate_tangent_array(3, positions, normals, texcoords, 1, triangle, tangents);
@@ -69,6 +73,11 @@ int main(void)
         if (memcmp(tangents, zero, sizeof tangents) != 0 || memcmp(corners, zero, sizeof corners) != 0 ||
             result[0] != -7 || appended != 0 || copy_target[3] != 0) {
             printf("an output was written although the call failed\n");
+            failed = 1;
+        }
+        if (memcmp(&reports[0], &untouched, sizeof untouched) != 0 ||
+            memcmp(&reports[1], &untouched, sizeof untouched) != 0) {
+            printf("a report was written although the call failed\n");
             failed = 1;
         }
         if (strcmp(tbasis_status_string(TBASIS_ERROR_INTERNAL), "internal error") != 0) {

@@ -2,7 +2,9 @@
 //! per-corner, counted on the calling thread. The C entry points are held to the same by
 //! `tests/allocation.rs` at the repository root, with the same counter.
 
-use tbasis::{scratch_size_for, DegeneratePolicy, Error, ErrorKind, Method, Options, Output, Report, StridedMut};
+use tbasis::{
+    scratch_size_for, DegeneratePolicy, Error, ErrorKind, Method, Options, Output, Report, ScratchBuffer, StridedMut,
+};
 use tbasis_test_support::alloc_count::{allocations, Counting};
 use tbasis_test_support::cases::{mirror_fold, quantized_uv_sphere, unit_quad, Case};
 
@@ -118,4 +120,40 @@ fn the_counter_sees_the_library_allocate_without_caller_scratch() {
         spawning,
         "another thread's allocations were counted here"
     );
+}
+
+#[test]
+fn a_scratch_buffer_allocates_only_for_a_mesh_larger_than_all_before() {
+    let (small, large) = (unit_quad(), quantized_uv_sphere());
+    for method in [Method::Lengyel, Method::Angle, Method::Mikktspace] {
+        let options = Options::default().with_method(method);
+        let mut scratch = ScratchBuffer::new();
+        let mut per_vertex = |case: &Case| {
+            let mesh = case.mesh();
+            let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
+            let mut output = Output {
+                tangents: StridedMut::from_slice(&mut tangents),
+                bitangents: None,
+            };
+            let (count, result) = allocations_during(|| scratch.generate(&mesh, &options, &mut output));
+            result.unwrap();
+            count
+        };
+        assert!(per_vertex(&small) > 0, "{method:?}: the first mesh allocates");
+        assert!(per_vertex(&large) > 0, "{method:?}: a larger mesh grows the buffer");
+        for case in [&small, &large, &small] {
+            assert_eq!(per_vertex(case), 0, "{method:?}: no larger than before");
+        }
+        let mut per_corner = |case: &Case| {
+            let mesh = case.mesh();
+            let mut corners = vec![[0.0f32; 4]; mesh.corner_count()];
+            let mut tangents = StridedMut::from_slice(&mut corners);
+            let (count, result) = allocations_during(|| scratch.generate_corners(&mesh, &options, &mut tangents));
+            result.unwrap();
+            count
+        };
+        for case in [&small, &large] {
+            assert_eq!(per_corner(case), 0, "{method:?} per corner: the buffer holds enough");
+        }
+    }
 }

@@ -5,14 +5,16 @@ use serde_json::Value;
 use tbasis::{Element, Indices, Strided};
 
 use crate::document::{Accessor, BufferView, ComponentType, Sparse};
+use crate::memory;
 
 /// Buffers as loaded (see [`crate::buffers::load`]).
 pub type Buffers = [Option<Vec<u8>>];
 
-/// The most bytes an accessor without a bufferView may hold. Its size is not bounded by the file:
-/// a few bytes of JSON could otherwise ask for more memory than the machine has, which aborts
-/// the whole run. 256 MiB: 22 million positions.
-pub const MAX_ZEROS: usize = 1 << 28;
+/// The most elements an accessor without a bufferView may hold. Its count is not bounded by the
+/// file: a few bytes of JSON could otherwise ask for more memory than the machine has. Each
+/// element, a corner's index most of all, costs tens of bytes further on (a tangent per corner,
+/// the library's working memory), so the bound is on elements: 16,777,216 (16 Mi).
+pub const MAX_ZEROS: usize = 1 << 24;
 
 /// What one element of an accessor is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,7 +57,7 @@ pub fn packed(json: &Value, buffers: &Buffers, index: usize) -> Result<(Layout, 
     // Checked before anything is allocated: the size, and where the elements lie.
     let place = located(json, buffers, index, &accessor, layout)?;
     let size = layout.element_size();
-    let mut out = vec![0u8; layout.count * size];
+    let mut out = memory::filled(layout.count * size, 0u8, &format!("accessor {index}"))?;
     write_elements(json, buffers, index, (&accessor, layout, place), &mut out, size)?;
     Ok((layout, out))
 }
@@ -106,7 +108,7 @@ fn write_elements(
 
 /// Where the elements of `accessor` (number `index`) lie: the bytes from its first element on
 /// and the stride, checked to hold every element; `None` without a bufferView (zeros, at most
-/// [`MAX_ZEROS`] bytes of them).
+/// [`MAX_ZEROS`] elements of them).
 fn located<'a>(
     json: &Value,
     buffers: &'a Buffers,
@@ -116,14 +118,10 @@ fn located<'a>(
 ) -> Result<Place<'a>, String> {
     let size = layout.element_size();
     let what = format!("accessor {index}");
-    let total = layout
-        .count
-        .checked_mul(size)
-        .ok_or_else(|| format!("{what}: too large"))?;
     let Some(view_index) = accessor.buffer_view else {
-        if total > MAX_ZEROS {
+        if layout.count > MAX_ZEROS {
             return Err(format!(
-                "{what}: {} elements without a bufferView, {total} bytes of zeros (at most {MAX_ZEROS} are read)",
+                "{what}: {} elements without a bufferView (at most {MAX_ZEROS} are read)",
                 layout.count
             ));
         }
@@ -286,10 +284,10 @@ where
             (ComponentType::UnsignedInt, _) => u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f32,
         }
     };
-    *storage = bytes
+    let elements = bytes
         .chunks_exact(size * N)
-        .map(|element| std::array::from_fn(|k| convert(&element[k * size..(k + 1) * size])))
-        .collect();
+        .map(|element| std::array::from_fn(|k| convert(&element[k * size..(k + 1) * size])));
+    *storage = memory::collect(layout.count, elements, &format!("accessor {index}"))?;
     Ok(Strided::from_slice(storage))
 }
 
@@ -315,6 +313,7 @@ pub fn indices<'a>(
         return Ok(indices);
     }
     let (layout, bytes) = packed(json, buffers, index)?;
-    *storage = bytes.chunks_exact(layout.component.size()).map(read_index).collect();
+    let indices = bytes.chunks_exact(layout.component.size()).map(read_index);
+    *storage = memory::collect(layout.count, indices, &format!("accessor {index}"))?;
     Ok(Indices::U32(Strided::from_slice(storage)))
 }

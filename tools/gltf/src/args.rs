@@ -161,17 +161,21 @@ impl Args {
         let dir = self.out_dir.as_ref().ok_or(
             "no output given: -o FILE (one input) or --out-dir DIR (any number of inputs); --check writes nothing",
         )?;
-        let mut names = HashSet::new();
+        // Side buffers are named from the stem (`STEM.tangents.bin`), which `a.gltf` and `a.GLTF`
+        // share. (A .glb keeps its new data in its binary chunk.)
+        let mut stems = HashSet::new();
         self.inputs
             .iter()
             .map(|input| {
                 let name = input
                     .file_name()
                     .ok_or_else(|| format!("{}: not a file name", input.display()))?;
-                if !names.insert(name.to_owned()) {
+                let stem = input.file_stem().unwrap_or(name);
+                let kind = kind_of(input)?;
+                if !stems.insert((stem.to_owned(), kind)) {
                     return Err(format!(
-                        "two inputs are named {}; their outputs in {} would collide",
-                        name.to_string_lossy(),
+                        "two inputs are named {}.{kind}; their outputs in {} would collide",
+                        stem.to_string_lossy(),
                         dir.display()
                     ));
                 }

@@ -6,6 +6,7 @@ use std::path::Path;
 use serde_json::{json, Value};
 
 use crate::document::{self, Buffer};
+use crate::memory;
 use crate::uri;
 
 /// Every buffer's bytes, from the GLB's binary chunk, a data URI or a file beside the document.
@@ -97,7 +98,7 @@ impl Segment {
             .checked_add(length)
             .and_then(|end| end.checked_next_multiple_of(4))
             .ok_or_else(|| too_long(length))?;
-        self.bytes.resize(padded_end, 0);
+        memory::resize(&mut self.bytes, padded_end, 0, "new buffer data")?;
         self.views.push(View {
             offset,
             length,

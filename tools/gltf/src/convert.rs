@@ -60,6 +60,17 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
         io::refuse_to_replace_input(&job.input, output)?;
     }
     let asset = io::read(&job.input, settings.allow_outside_uris)?;
+    // The output is written as the input is, and takes its kind from its name as the input does.
+    let named = crate::args::kind_of(&job.input)?;
+    let holds = match asset.kind {
+        Kind::Glb => "glb",
+        Kind::Gltf => "gltf",
+    };
+    if named != holds {
+        return Err(format!(
+            "its name says .{named} but it holds a .{holds} file; rename it"
+        ));
+    }
     let mut outcome = convert_asset(asset, job.output.as_deref(), settings, |files| {
         io::write_files(files, &job.input, settings.replace_side_files)
     })?;
@@ -114,6 +125,10 @@ pub fn convert_asset(
     let Some(output) = output else {
         return Ok(outcome);
     };
+    // Made only now, so that a file that fails before leaves no folder behind.
+    if let Some(dir) = output.parent().filter(|dir| !dir.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    }
     let side_file = finish_buffers(&mut asset, original_buffers, output)?;
     rebase_uris(&mut asset, original_buffers, output)?;
     // After the buffers are placed: pruning keeps the new buffer last (`finish_buffers`).
@@ -241,10 +256,12 @@ fn append(
     Ok(place(asset, buffer, old_length, placed.end, placed.pieces))
 }
 
-/// The buffer the new data goes into, and its length so far: the GLB's own buffer, or a new
-/// buffer (its URI is chosen when the file is written).
+/// The buffer the new data goes into, and its length so far: the GLB's own buffer (its first,
+/// without a URI, holding the binary chunk), or a new buffer (its URI is chosen when the file is
+/// written). A first buffer without a URI that holds no data (a meshopt fallback in a GLB
+/// without a binary chunk) is not the GLB's own.
 fn data_buffer(asset: &Asset) -> Result<(usize, usize), String> {
-    if asset.kind == Kind::Glb && document::count(&asset.json, "buffers") > 0 {
+    if asset.kind == Kind::Glb && asset.buffers.first().is_some_and(Option::is_some) {
         let first = Buffer::read(&asset.json, 0)?;
         if first.uri.is_none() {
             return Ok((0, first.byte_length));
@@ -283,7 +300,7 @@ fn place(asset: &mut Asset, buffer: usize, old_length: usize, length: usize, pie
 }
 
 /// Gives a buffer the tool added a place: the GLB's binary chunk when it is the first buffer of a
-/// .glb, a data URI in a .gltf whose buffers are all embedded, else a file beside the output,
+/// .glb, a data URI in a document whose buffers are all embedded, else a file beside the output,
 /// which is returned (its bytes are the last buffer's). The document had `original_buffers`.
 fn finish_buffers(asset: &mut Asset, original_buffers: usize, output: &Path) -> Result<Option<PathBuf>, String> {
     // The index of the buffer the tool added, if it added one.
@@ -294,9 +311,9 @@ fn finish_buffers(asset: &mut Asset, original_buffers: usize, output: &Path) -> 
     if asset.kind == Kind::Glb && added == 0 {
         return Ok(None);
     }
-    let embedded = asset.kind == Kind::Gltf
-        && (0..original_buffers)
-            .all(|i| Buffer::read(&asset.json, i).is_ok_and(|b| b.uri.is_some_and(|u| u.starts_with("data:"))));
+    // A document whose buffers are all embedded stays one file.
+    let embedded = (0..original_buffers)
+        .all(|i| Buffer::read(&asset.json, i).is_ok_and(|b| b.uri.is_some_and(|u| u.starts_with("data:"))));
     if embedded {
         let bytes = asset.buffers[added].as_deref().unwrap_or_default();
         asset.json["buffers"][added]["uri"] = json!(uri::encode_data(bytes));

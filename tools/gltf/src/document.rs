@@ -588,10 +588,10 @@ fn named_accessors(json: &Value, map: &Value) -> Result<Vec<(String, usize)>, St
         .collect()
 }
 
-/// Whether `name` is a glTF attribute semantic the gltf crate accepted (its build here read no
-/// application-specific `_NAME`).
+/// Whether `name` is a glTF attribute semantic: one of the specification's, or an
+/// application-specific `_NAME` (copied like any other attribute where vertices are split).
 fn is_semantic(name: &str) -> bool {
-    if ["POSITION", "NORMAL", "TANGENT"].contains(&name) {
+    if ["POSITION", "NORMAL", "TANGENT"].contains(&name) || (name.len() > 1 && name.starts_with('_')) {
         return true;
     }
     ["COLOR_", "TEXCOORD_", "JOINTS_", "WEIGHTS_"]

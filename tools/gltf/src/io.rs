@@ -433,6 +433,14 @@ mod tests {
             cases.push(lying);
         }
         let summary = |asset: Result<Asset, String>| asset.map(|a| (a.kind, a.json, a.buffers));
+        // The intact files load, with their binary chunk: a reader that refused every file
+        // would otherwise pass the comparisons below.
+        for (k, (bytes, bin_length)) in [(&small, 40), (&large, 9 << 20)].into_iter().enumerate() {
+            let path = dir.path().join(format!("intact{k}.glb"));
+            fs::write(&path, bytes).unwrap();
+            let (kind, _, buffers) = summary(read(&path, false)).unwrap();
+            assert_eq!((kind, buffers[0].as_ref().map(Vec::len)), (Kind::Glb, Some(bin_length)));
+        }
         for (k, bytes) in cases.into_iter().enumerate() {
             let path = dir.path().join(format!("case{k}.glb"));
             fs::write(&path, &bytes).unwrap();

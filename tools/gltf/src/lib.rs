@@ -9,6 +9,7 @@ pub mod buffers;
 pub mod convert;
 pub mod document;
 pub mod io;
+pub mod memory;
 pub mod primitive;
 pub mod prune;
 pub mod select;

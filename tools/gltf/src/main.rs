@@ -19,16 +19,6 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let out_dir = args
-        .out_dir
-        .as_deref()
-        .or_else(|| args.output.as_deref().and_then(std::path::Path::parent));
-    if let Some(dir) = out_dir.filter(|dir| !dir.as_os_str().is_empty()) {
-        if let Err(e) = std::fs::create_dir_all(dir) {
-            eprintln!("tbasis-gltf: cannot create {}: {e}", dir.display());
-            return ExitCode::FAILURE;
-        }
-    }
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
     let workers = args.jobs.map_or(cores, usize::from).min(jobs.len()).max(1);
     let settings = convert::Settings {

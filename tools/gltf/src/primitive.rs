@@ -10,6 +10,7 @@ use tbasis::{Strided, StridedMut};
 use crate::accessor::{self, Buffers, Layout};
 use crate::buffers::Segment;
 use crate::document::{ComponentType, ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER};
+use crate::memory;
 use crate::select::Source;
 
 /// Tangents for a primitive's vertices after the split.
@@ -90,7 +91,7 @@ pub fn compute(
     };
     let corners = &mut workspace.corners;
     // Every corner is written: what an earlier primitive left is overwritten.
-    corners.resize(mesh.corner_count(), [0.0; 4]);
+    memory::resize(corners, mesh.corner_count(), [0.0; 4], "tangents per corner")?;
     let report = workspace
         .scratch
         .generate_corners(&mesh, options, &mut StridedMut::from_slice(corners))
@@ -99,7 +100,7 @@ pub fn compute(
 
     // Each corner's tangent goes to its vertex. A vertex no triangle uses (its `w` is still 0:
     // a written one is +1 or -1) still needs a valid TANGENT: a frame built from its normal.
-    let mut tangents = vec![[0.0f32; 4]; vertex_count + split.sources.len()];
+    let mut tangents = memory::filled(vertex_count + split.sources.len(), [0.0f32; 4], "tangents")?;
     for (&vertex, corner) in split.indices.iter().zip(corners.iter()) {
         tangents[vertex as usize] = *corner;
     }

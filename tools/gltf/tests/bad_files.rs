@@ -280,3 +280,63 @@ fn a_huge_accessor_without_data() {
         "accessor 3: 1099511627776 elements without a bufferView",
     );
 }
+
+#[test]
+fn contents_not_of_the_kind_the_name_says() {
+    let (input, output) = folders("kind");
+    let json = Fixture::mirrored_quad().write_gltf(&input, "json");
+    let named_glb = input.join("json.glb");
+    std::fs::rename(&json, &named_glb).unwrap();
+    refused(&named_glb, &output, "its name says .glb but it holds a .gltf file");
+    let glb = Fixture::mirrored_quad().write_glb(&input, "binary");
+    let named_gltf = input.join("binary.gltf");
+    std::fs::rename(&glb, &named_gltf).unwrap();
+    refused(&named_gltf, &output, "its name says .gltf but it holds a .glb file");
+}
+
+#[test]
+fn a_failed_file_leaves_no_output_folder() {
+    let (input, output) = folders("no-folder");
+    let missing = input.join("missing.glb");
+    let nested = output.join("new").join("folder");
+    let result = tool::run([missing.as_os_str(), "-o".as_ref(), nested.join("x.glb").as_os_str()]);
+    assert_eq!(result.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&result.stderr).contains("cannot read it"));
+    let result = tool::run([missing.as_os_str(), "--out-dir".as_ref(), nested.as_os_str()]);
+    assert_eq!(result.status.code(), Some(1));
+    assert_eq!(tool::listing(&output), Vec::<String>::new(), "no folder made");
+}
+
+/// A file whose counts need more memory than the process may have fails with a message, not an
+/// abort: 16 Mi indices of zeros (the most read without a bufferView) from a few bytes of JSON,
+/// about 1 GB of working memory, under a limit of 256 MiB of address space.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_file_that_needs_more_memory_than_the_system_gives() {
+    let (input, output) = folders("memory");
+    let mut fixture = Fixture::mirrored_quad();
+    let indices = fixture.primitive(0)["indices"].as_u64().unwrap() as usize;
+    let accessor = &mut fixture.json["accessors"][indices];
+    let view = accessor.as_object_mut().unwrap().remove("bufferView").unwrap();
+    accessor["count"] = json!((1u64 << 24) - 1);
+    accessor["sparse"] = json!({
+        "count": 1,
+        "indices": { "bufferView": view, "componentType": 5123 },
+        "values": { "bufferView": view },
+    });
+    let file = fixture.write_glb(&input, "memory");
+    let result = std::process::Command::new("sh")
+        .args(["-c", "ulimit -v 262144 && exec \"$0\" \"$@\""])
+        .arg(env!("CARGO_BIN_EXE_tbasis-gltf"))
+        .args(["--jobs".as_ref(), "1".as_ref(), file.as_os_str(), "-o".as_ref()])
+        .arg(output.join("memory.glb"))
+        .output()
+        .expect("sh starts");
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(1), "exit status: {stderr}");
+    assert!(
+        stderr.contains("memory.glb") && stderr.contains("memory for"),
+        "{stderr}"
+    );
+    assert_eq!(tool::listing(&output), Vec::<String>::new(), "nothing written");
+}

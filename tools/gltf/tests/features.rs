@@ -3,6 +3,7 @@
 
 mod common;
 
+use base64::Engine;
 use common::document::Doc;
 use common::fixture::Fixture;
 use common::tool;
@@ -159,8 +160,27 @@ fn existing_tangents_are_kept_unless_overwrite_and_incomplete_primitives_are_lis
         replaced.as_os_str(),
     ]);
     assert!(String::from_utf8_lossy(&result.stdout).contains("1 primitive done, 2 vertices added"));
-    let after = Doc::open(&replaced);
-    assert_ne!(after.attribute(0, 0, "TANGENT"), Some(tangent));
+    // The stored tangents are replaced by those of the same quad without them, corner by corner.
+    let fresh_input = Fixture::mirrored_quad().write_gltf(&dir, "fresh");
+    let fresh = dir.join("fresh-out.gltf");
+    assert!(tool::run([fresh_input.as_os_str(), "-o".as_ref(), fresh.as_os_str()])
+        .status
+        .success());
+    let per_corner = |file: &std::path::Path| {
+        let corners = Doc::open(file).corners(0, 0, 0);
+        let tangents = corners.tangents.expect("TANGENT");
+        corners
+            .indices
+            .iter()
+            .map(|&v| tangents[v as usize])
+            .collect::<Vec<_>>()
+    };
+    let replaced_tangents = per_corner(&replaced);
+    assert_eq!(replaced_tangents, per_corner(&fresh));
+    assert!(
+        replaced_tangents.iter().any(|t| *t != [0.0, 1.0, 0.0, 1.0]),
+        "{replaced_tangents:?}"
+    );
     assert!(dir.join("replaced.tangents.bin").is_file());
 }
 
@@ -417,4 +437,231 @@ fn elements_that_overlap_are_read_as_they_lie() {
         corner_tangents(&dir, &overlapping, "overlapping"),
         corner_tangents(&dir, &packed, "packed")
     );
+}
+
+/// The JSON and binary chunk of a `.glb`, read without checking the document (the `gltf` crate's
+/// checks refuse application-specific attribute names).
+fn glb_parts(path: &std::path::Path) -> (serde_json::Value, Vec<u8>) {
+    let bytes = std::fs::read(path).unwrap();
+    let glb = gltf::Glb::from_slice(&bytes).expect("a GLB");
+    let json = serde_json::from_slice(&glb.json).expect("JSON");
+    (json, glb.bin.map(|b| b.into_owned()).unwrap_or_default())
+}
+
+/// Accessor `index` of a `.glb` as float vectors, from its binary chunk (tightly packed or not).
+fn float_elements<const N: usize>(json: &serde_json::Value, bin: &[u8], index: usize) -> Vec<[f32; N]> {
+    let accessor = &json["accessors"][index];
+    let view = &json["bufferViews"][accessor["bufferView"].as_u64().unwrap() as usize];
+    assert_eq!(view["buffer"], 0, "in the binary chunk");
+    let start = (view["byteOffset"].as_u64().unwrap_or(0) + accessor["byteOffset"].as_u64().unwrap_or(0)) as usize;
+    let stride = view["byteStride"].as_u64().map_or(4 * N, |s| s as usize);
+    (0..accessor["count"].as_u64().unwrap() as usize)
+        .map(|i| {
+            std::array::from_fn(|k| {
+                let at = start + i * stride + 4 * k;
+                f32::from_le_bytes(bin[at..at + 4].try_into().unwrap())
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn application_specific_attributes_are_copied_where_vertices_split() {
+    let dir = tool::fresh_dir("custom-attribute");
+    let mut fixture = Fixture::mirrored_quad();
+    let values = [[1.0f32, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0], [10.0, 11.0, 12.0]];
+    let custom = fixture.floats(&values, "VEC3", false);
+    fixture.primitive(0)["attributes"]["_FOO"] = json!(custom);
+    let input = fixture.write_glb(&dir, "custom");
+    let output = dir.join("out.glb");
+    let result = tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()]);
+    assert!(result.status.success());
+    assert!(String::from_utf8_lossy(&result.stdout).contains("1 primitive done, 2 vertices added"));
+
+    let (json, bin) = glb_parts(&output);
+    let attributes = &json["meshes"][0]["primitives"][0]["attributes"];
+    let positions: Vec<[f32; 3]> = float_elements(&json, &bin, attributes["POSITION"].as_u64().unwrap() as usize);
+    let copied: Vec<[f32; 3]> = float_elements(&json, &bin, attributes["_FOO"].as_u64().unwrap() as usize);
+    assert_eq!((positions.len(), copied.len()), (6, 6));
+    // The quad's four positions differ: each vertex's position names the vertex it copies.
+    let quad = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+    for (position, value) in positions.iter().zip(&copied) {
+        let source = quad.iter().position(|p| p == position).expect("a position of the quad");
+        assert_eq!(*value, values[source]);
+    }
+}
+
+/// The mirrored quad as a `.glb` without a binary chunk: its data in a data URI, after the
+/// buffers `first` (a meshopt fallback buffer, or nothing).
+fn glb_without_binary_chunk(dir: &std::path::Path, name: &str, first: Option<serde_json::Value>) -> std::path::PathBuf {
+    let fixture = Fixture::mirrored_quad();
+    let mut json = fixture.json.clone();
+    let data = base64::engine::general_purpose::STANDARD.encode(&fixture.bin);
+    let data_buffer =
+        json!({ "byteLength": fixture.bin.len(), "uri": format!("data:application/octet-stream;base64,{data}") });
+    let shift = u64::from(first.is_some());
+    json["buffers"] = json!(first.into_iter().chain([data_buffer]).collect::<Vec<_>>());
+    for view in json["bufferViews"].as_array_mut().unwrap() {
+        view["buffer"] = json!(shift);
+    }
+    if shift == 1 {
+        json["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
+    }
+    let glb = gltf::Glb {
+        header: gltf::binary::Header {
+            magic: *b"glTF",
+            version: 2,
+            length: 0,
+        },
+        json: serde_json::to_vec(&json).unwrap().into(),
+        bin: None,
+    };
+    let path = dir.join(format!("{name}.glb"));
+    std::fs::write(&path, glb.to_vec().unwrap()).unwrap();
+    path
+}
+
+#[test]
+fn a_glb_without_binary_chunk_gets_its_new_data_where_a_gltf_would() {
+    let dir = tool::fresh_dir("glb-without-bin");
+    // Every buffer a data URI: the output stays one file, its new data embedded too.
+    let input = glb_without_binary_chunk(&dir, "embedded", None);
+    let output = dir.join("out").join("embedded.glb");
+    assert!(tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()])
+        .status
+        .success());
+    assert_eq!(tool::listing(&dir.join("out")), ["embedded.glb"]);
+    let after = Doc::open(&output);
+    let tangents = after.corners(0, 0, 0).tangents.expect("TANGENT");
+    assert_eq!(tangents.len(), 6);
+    assert!(tangents.iter().all(|t| t[3].abs() == 1.0));
+
+    // A first buffer that is a meshopt fallback holds no data and no binary chunk holds it: the
+    // new data goes beside the output, and the output still holds it.
+    let fallback = json!({ "byteLength": 64, "extensions": { "EXT_meshopt_compression": { "fallback": true } } });
+    let input = glb_without_binary_chunk(&dir, "fallback", Some(fallback));
+    let output = dir.join("out2").join("fallback.glb");
+    assert!(tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()])
+        .status
+        .success());
+    assert_eq!(
+        tool::listing(&dir.join("out2")),
+        ["fallback.glb", "fallback.tangents.bin"]
+    );
+    let (json, _) = glb_parts(&output);
+    let tangent = &json["accessors"][json["meshes"][0]["primitives"][0]["attributes"]["TANGENT"]
+        .as_u64()
+        .unwrap() as usize];
+    let view = &json["bufferViews"][tangent["bufferView"].as_u64().unwrap() as usize];
+    let buffer = &json["buffers"][view["buffer"].as_u64().unwrap() as usize];
+    assert_eq!(buffer["uri"], "fallback.tangents.bin");
+    let side = std::fs::read(dir.join("out2").join("fallback.tangents.bin")).unwrap();
+    assert!(side.len() as u64 >= buffer["byteLength"].as_u64().unwrap());
+    let start = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+    for k in 0..tangent["count"].as_u64().unwrap() as usize {
+        let at = start + 16 * k + 12;
+        let w = f32::from_le_bytes(side[at..at + 4].try_into().unwrap());
+        assert_eq!(w.abs(), 1.0, "tangent {k}");
+    }
+}
+
+#[test]
+fn the_side_buffer_takes_a_numbered_name_when_the_document_uses_the_plain_one() {
+    let dir = tool::fresh_dir("numbered-side-buffer");
+    let input = Fixture::mirrored_quad().write_gltf(&dir, "quad");
+    // The input's own buffer is named as the output's side buffer would be.
+    std::fs::rename(dir.join("quad.bin"), dir.join("out.tangents.bin")).unwrap();
+    let mut json: serde_json::Value = serde_json::from_slice(&std::fs::read(&input).unwrap()).unwrap();
+    json["buffers"][0]["uri"] = json!("out.tangents.bin");
+    std::fs::write(&input, serde_json::to_vec(&json).unwrap()).unwrap();
+    let buffer = std::fs::read(dir.join("out.tangents.bin")).unwrap();
+
+    let output = dir.join("out.gltf");
+    assert!(tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()])
+        .status
+        .success());
+    assert_eq!(
+        std::fs::read(dir.join("out.tangents.bin")).unwrap(),
+        buffer,
+        "the input's buffer is as it was"
+    );
+    let after = Doc::open(&output);
+    let uris: Vec<&str> = after.json["buffers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|b| b["uri"].as_str())
+        .collect();
+    assert!(uris.contains(&"out.tangents.1.bin"), "{uris:?}");
+    assert_eq!(after.corners(0, 0, 0).tangents.expect("TANGENT").len(), 6);
+}
+
+#[test]
+fn primitives_that_read_the_same_accessors_are_computed_once_and_share_the_result() {
+    let dir = tool::fresh_dir("shared-primitives");
+    let mut fixture = Fixture::mirrored_quad();
+    let twin = fixture.primitive(0).clone();
+    fixture.json["meshes"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({ "primitives": [twin] }));
+    let input = fixture.write_glb(&dir, "twins");
+    let output = dir.join("out.glb");
+    let result = tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()]);
+    assert!(String::from_utf8_lossy(&result.stdout).contains("2 primitives done, 2 vertices added"));
+    let after = Doc::open(&output);
+    assert_eq!(after.primitive_json(0, 0), after.primitive_json(1, 0));
+    assert!(after.attribute(0, 0, "TANGENT").is_some());
+}
+
+#[test]
+fn a_document_with_an_unknown_extension_is_not_pruned() {
+    let dir = tool::fresh_dir("unknown-extension");
+    let mut fixture = Fixture::mirrored_quad();
+    let tangent = fixture.floats(&[[0.0f32, 1.0, 0.0, 1.0]; 4], "VEC4", false);
+    fixture.primitive(0)["attributes"]["TANGENT"] = json!(tangent);
+    let accessors_before = fixture.json["accessors"].as_array().unwrap().len();
+    let count = |fixture: &Fixture, name: &str| {
+        let input = fixture.write_glb(&dir, name);
+        let output = dir.join(format!("{name}-out.glb"));
+        let result = tool::run([
+            input.as_os_str(),
+            "--overwrite".as_ref(),
+            "-o".as_ref(),
+            output.as_os_str(),
+        ]);
+        assert!(result.status.success());
+        Doc::open(&output).json["accessors"].as_array().unwrap().len()
+    };
+    // Known extensions only: the replaced accessors (old TANGENT, attributes, indices) go.
+    assert_eq!(count(&fixture, "known"), accessors_before);
+    // An extension whose references the tool cannot renumber: everything stays.
+    fixture.json["extensionsUsed"] = json!(["EXT_example_unknown"]);
+    fixture.json["extensions"] = json!({ "EXT_example_unknown": { "accessor": 2 } });
+    assert!(count(&fixture, "unknown") > accessors_before);
+}
+
+#[test]
+fn quiet_prints_no_summary_and_a_draco_primitive_is_left_as_it_was() {
+    let dir = tool::fresh_dir("quiet-draco");
+    let mut fixture = Fixture::mirrored_quad();
+    fixture.json["extensionsUsed"] = json!(["KHR_draco_mesh_compression"]);
+    let mut draco = fixture.primitive(0).clone();
+    draco["extensions"] = json!({ "KHR_draco_mesh_compression": { "bufferView": 0, "attributes": { "POSITION": 0 } } });
+    fixture.json["meshes"][0]["primitives"]
+        .as_array_mut()
+        .unwrap()
+        .push(draco);
+    let input = fixture.write_glb(&dir, "draco");
+    let output = dir.join("out.glb");
+    let result = tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()]);
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(stdout.contains("mesh 0 primitive 1: Draco-compressed"), "{stdout}");
+    let (before, after) = (Doc::open(&input), Doc::open(&output));
+    assert_eq!(before.primitive_json(0, 1), after.primitive_json(0, 1));
+
+    let quiet = dir.join("quiet.glb");
+    let result = tool::run([input.as_os_str(), "--quiet".as_ref(), "-o".as_ref(), quiet.as_os_str()]);
+    assert!(result.status.success() && result.stdout.is_empty());
+    assert_eq!(std::fs::read(&quiet).unwrap(), std::fs::read(&output).unwrap());
 }

@@ -137,3 +137,33 @@ fn overwrite_twice_passes_the_validator_with_no_unused_object() {
         assert!(new.is_empty(), "{}: {new:#?}", second.display());
     }
 }
+
+#[test]
+fn inputs_whose_side_buffers_would_share_a_name_are_refused() {
+    let dir = tool::fresh_dir("stems");
+    std::fs::create_dir_all(dir.join("a")).unwrap();
+    std::fs::create_dir_all(dir.join("b")).unwrap();
+    let first = Fixture::mirrored_quad().write_gltf(&dir.join("a"), "quad");
+    let second = dir.join("b").join("quad.GLTF");
+    std::fs::rename(Fixture::mirrored_quad().write_gltf(&dir.join("b"), "quad"), &second).unwrap();
+    let out = dir.join("out");
+    let result = tool::run([
+        first.as_os_str(),
+        second.as_os_str(),
+        "--out-dir".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert_eq!(result.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&result.stderr).contains("two inputs are named quad.gltf"));
+    assert!(!out.exists(), "nothing written");
+    // A .glb of the same stem keeps its new data in its binary chunk: no collision.
+    let glb = Fixture::mirrored_quad().write_glb(&dir.join("b"), "quad");
+    let result = tool::run([
+        first.as_os_str(),
+        glb.as_os_str(),
+        "--out-dir".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(result.status.success());
+    assert_eq!(tool::listing(&out), ["quad.glb", "quad.gltf", "quad.tangents.bin"]);
+}
