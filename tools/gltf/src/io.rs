@@ -304,7 +304,7 @@ pub fn refuse_to_replace_input(input: &Path, output: &Path) -> Result<(), String
 /// an interrupted run leaves no half-written file and the main file never names a side file that
 /// is missing. When a rename fails, the files already renamed are removed: all of the output or
 /// none of it. A side file that exists is replaced only with `replace_side_files` (the user named
-/// the main file, not it). New files get `like`'s permissions, and are writable by their owner
+/// the main file, not it), and put back when the main file cannot be written. New files get `like`'s permissions, and are writable by their owner
 /// (inputs are often read-only).
 pub fn write_files(files: &Files, like: &Path, replace_side_files: bool) -> Result<(), String> {
     let permissions = fs::metadata(like).map(|m| writable(m.permissions())).ok();
@@ -333,28 +333,55 @@ pub fn write_files(files: &Files, like: &Path, replace_side_files: bool) -> Resu
     }
     let main = staged.len().saturating_sub(1);
     let mut placed: Vec<&Path> = Vec::new();
+    // Side files that `replace_side_files` replaces, moved aside until the main file is in place,
+    // and put back if it is not: the output before stays whole. Removed when dropped.
+    let mut set_aside: Vec<(tempfile::TempPath, &Path)> = Vec::new();
     for (k, (file, path)) in staged.into_iter().enumerate() {
-        let result = if k == main || replace_side_files {
-            file.persist(path).map(drop)
+        let result = if k == main {
+            file.persist(path).map(drop).map_err(|e| e.error)
         } else {
-            file.persist_noclobber(path).map(drop)
+            let aside = if replace_side_files { move_aside(path) } else { Ok(None) };
+            aside.and_then(|old| {
+                set_aside.extend(old.map(|old| (old, path.as_path())));
+                file.persist_noclobber(path).map(drop).map_err(|e| e.error)
+            })
         };
-        if let Err(e) = result {
+        if let Err(error) = result {
             for done in placed {
                 let _ = fs::remove_file(done);
             }
-            return Err(if e.error.kind() == std::io::ErrorKind::AlreadyExists {
+            for (old, path) in set_aside {
+                let _ = old.persist(path);
+            }
+            return Err(if error.kind() == std::io::ErrorKind::AlreadyExists {
                 format!(
                     "{} exists and this run did not write it; remove it, or pass --force to replace it",
                     path.display()
                 )
             } else {
-                format!("cannot rename into {}: {}", path.display(), e.error)
+                format!("cannot rename into {}: {error}", path.display())
             });
         }
         placed.push(path);
     }
     Ok(())
+}
+
+/// Renames the file at `path`, if there is one, to a new temporary name beside it.
+fn move_aside(path: &Path) -> std::io::Result<Option<tempfile::TempPath>> {
+    if fs::symlink_metadata(path).is_err() {
+        return Ok(None);
+    }
+    let dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir,
+        _ => Path::new("."),
+    };
+    let aside = tempfile::Builder::new()
+        .prefix(".tbasis-gltf-old-")
+        .tempfile_in(dir)?
+        .into_temp_path();
+    fs::rename(path, &aside)?;
+    Ok(Some(aside))
 }
 
 /// Reserves the file's blocks before the write. On ext4 a file written without them has its

@@ -67,6 +67,17 @@ fn a_failed_rename_of_the_main_file_leaves_no_side_buffer() {
     std::fs::create_dir_all(output.join("occupied")).unwrap();
     fails(&[&input, Path::new("-o"), &output], "cannot rename into");
     assert_eq!(tool::listing(&out), ["quad.gltf"], "no side buffer, no temporary file");
+    // A side buffer `--force` would replace is put back as it was.
+    std::fs::write(out.join("quad.tangents.bin"), b"an earlier output").unwrap();
+    fails(
+        &[&input, Path::new("--force"), Path::new("-o"), &output],
+        "cannot rename into",
+    );
+    assert_eq!(tool::listing(&out), ["quad.gltf", "quad.tangents.bin"]);
+    assert_eq!(
+        std::fs::read(out.join("quad.tangents.bin")).unwrap(),
+        b"an earlier output"
+    );
 }
 
 /// Runs the tool with `--overwrite` on `input` into `output`.
