@@ -452,10 +452,23 @@ void test_scratch_sizes(const test_mesh *m)
                       index_type_name(index_types[k]), (unsigned)method, (unsigned)policy,
                       tbasis_scratch_size(&desc, &options), expected);
             }
+        /* MIKKTSPACE: the header's formula, with T = C / 3 triangles; REJECT at least 29 V + 3. */
         options = method_options(TBASIS_METHOD_MIKKTSPACE, 0);
-        check(tbasis_scratch_size(&desc, &options) != SIZE_MAX, "tbasis_scratch_size (%s, MIKKTSPACE) is SIZE_MAX",
+        expected = 97 * corners + 65 * (corners / 3) + 12 * n + 4 * (2 * n + 2 > corners ? 2 * n + 2 : corners) + 16454;
+        check(tbasis_scratch_size(&desc, &options) == expected, "tbasis_scratch_size (%s, MIKKTSPACE) is %zu, expected %zu",
+              index_type_name(index_types[k]), tbasis_scratch_size(&desc, &options), expected);
+        options = method_options(TBASIS_METHOD_MIKKTSPACE, TBASIS_DEGENERATE_REJECT);
+        check(tbasis_scratch_size(&desc, &options) >= per_vertex, "tbasis_scratch_size (%s, MIKKTSPACE, REJECT)",
               index_type_name(index_types[k]));
     }
+
+    /* MIKKTSPACE indexes vertices and corners in 32 bits: at most 2^30 - 1 of each. */
+    desc = mesh_description(m, 0);
+    options = method_options(TBASIS_METHOD_MIKKTSPACE, 0);
+    desc.vertex_count = ((size_t)1 << 30) - 1;
+    check(tbasis_scratch_size(&desc, &options) != SIZE_MAX, "tbasis_scratch_size, MIKKTSPACE, 2^30 - 1 vertices");
+    desc.vertex_count = (size_t)1 << 30;
+    check(tbasis_scratch_size(&desc, &options) == SIZE_MAX, "tbasis_scratch_size, MIKKTSPACE, 2^30 vertices");
 
     desc = mesh_description(m, TBASIS_INDEX_U32);
     empty = desc;

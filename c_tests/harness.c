@@ -662,15 +662,21 @@ static void test_out_of_memory(void)
  * Every error status, and nothing written when one is returned
  */
 
-/* Runs the fixture's call; on an error every byte of the arena must be as before. */
+/* Runs the fixture's call; on an error every byte of the arena must be as before, and the report
+   too but on the two refusals that fill it. */
 static void expect(fixture *f, const char *what, tbasis_status want)
 {
     tbasis_status got;
+    tbasis_report report, untouched;
     memcpy(&f->before, &f->memory, sizeof f->memory);
-    got = tbasis_generate(f->mesh_arg, &f->options, f->output_arg, NULL);
+    memset(&report, 0x5A, sizeof report);
+    memset(&untouched, 0x5A, sizeof untouched);
+    got = tbasis_generate(f->mesh_arg, &f->options, f->output_arg, &report);
     expect_status(what, got, want);
     if (want != TBASIS_OK)
         check(memcmp(&f->before, &f->memory, sizeof f->memory) == 0, "%s: a byte was written", what);
+    if (want != TBASIS_OK && want != TBASIS_ERROR_INDEX_OUT_OF_RANGE && want != TBASIS_ERROR_DEGENERATE_UV)
+        check(memcmp(&report, &untouched, sizeof report) == 0, "%s: the report was written", what);
 }
 
 /* The same for the listing's signature over the fixture's packed buffers. */
@@ -798,6 +804,20 @@ static void test_statuses(fixture *f)
     fixture_reset(f);
     f->options.method = UINT32_MAX;
     expect(f, "method 0xFFFFFFFF", TBASIS_ERROR_UNKNOWN_METHOD);
+    fixture_reset(f);
+    f->options.method = TBASIS_METHOD_ANGLE;
+    f->options.degenerate_policy = TBASIS_DEGENERATE_LEGACY;
+    expect(f, "policy LEGACY with method ANGLE", TBASIS_ERROR_NO_LEGACY_FORM);
+    fixture_reset(f);
+    f->mesh.vertex_count = 0;
+    f->mesh.index_count = 0;
+    f->mesh.positions = NULL;
+    f->mesh.normals = NULL;
+    f->mesh.texcoords = NULL;
+    f->mesh.indices = NULL;
+    f->output.tangents = NULL;
+    f->output.bitangents = NULL;
+    expect(f, "an empty mesh with every buffer NULL", TBASIS_OK);
     fixture_reset(f);
     f->options.degenerate_policy = 5;
     expect(f, "policy 5", TBASIS_ERROR_UNKNOWN_POLICY);

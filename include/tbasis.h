@@ -6,7 +6,9 @@
  * Conventions: every stride is in bytes and at least the element's size; pointers need no
  * alignment; vertex i of a buffer starts at pointer + i * stride. Tangents are written as
  * float x, y, z, w with w = +1 or -1, and bitangent = w * cross(normal, tangent.xyz).
- * Nothing is written unless a call returns TBASIS_OK. No function keeps global state.
+ * No output is written unless a call returns TBASIS_OK (the report is filled on two refusals, and
+ * TBASIS_ERROR_INTERNAL, a library bug, may leave outputs partly written: see each function).
+ * No function keeps global state.
  */
 
 #ifndef TBASIS_H
@@ -130,7 +132,8 @@ typedef struct tbasis_options {
 // Where results go. Each pointer addresses vertex 0; vertex `i` starts `i * stride` bytes after.
 typedef struct tbasis_output {
   // float x, y, z, w written into the first 16 bytes of each vertex: unit tangent and
-  // handedness w = +1 or -1; `(vertex_count - 1) * tangents_stride + 16` bytes. Required.
+  // handedness w = +1 or -1; `(vertex_count - 1) * tangents_stride + 16` bytes. Required
+  // (NULL only with no vertex).
   void *tangents;
   // Bytes from one tangent to the next; at least 16.
   size_t tangents_stride;
@@ -150,7 +153,9 @@ typedef struct tbasis_report {
   size_t degenerate_triangles;
   // Index of the first such triangle; `TBASIS_NO_TRIANGLE` when there is none.
   size_t first_degenerate_triangle;
-  // Vertices given the fallback frame built from their normal alone (never with LEGACY).
+  // Vertices given the fallback frame built from their normal alone: never with LEGACY, but
+  // with method MIKKTSPACE (whose default policy is LEGACY) the vertices no triangle uses, in
+  // `tbasis_generate`'s report only (`tbasis_generate_corners` writes no vertex).
   size_t fallback_vertices;
   // Vertices used by non-degenerate triangles of both UV orientations (mirror folds).
   size_t mirrored_vertices;
@@ -177,9 +182,10 @@ typedef struct tbasis_report {
 // Success.
 #define TBASIS_OK 0
 
-// A required pointer is NULL: `mesh`, `output`, `output->tangents`, the `tangents` of
-// `tbasis_generate_corners` when the mesh has corners, or a vertex or index buffer whose count is
-// nonzero (`texcoords` may be NULL except with policy LEGACY or method MIKKTSPACE).
+// A required pointer is NULL: `mesh`, `output`, `output->tangents` when the mesh has vertices,
+// the `tangents` of `tbasis_generate_corners` when the mesh has corners, or a vertex or index
+// buffer whose count is nonzero (`texcoords` may be NULL except with policy LEGACY or method
+// MIKKTSPACE).
 #define TBASIS_ERROR_NULL_POINTER 1
 
 // A stride is smaller than its element: 12 bytes for positions and normals, 8 for texcoords,
@@ -204,7 +210,8 @@ typedef struct tbasis_report {
 // `options->flags` has a bit that no `TBASIS_FLAG_*` names.
 #define TBASIS_ERROR_UNKNOWN_FLAGS 8
 
-// `stride * count`, or the address range a buffer spans, overflows.
+// `stride * count`, or the address range a buffer spans, overflows; or, with method MIKKTSPACE,
+// the mesh has more than 2^30 - 1 vertices or corners (its working arrays index them in 32 bits).
 #define TBASIS_ERROR_SIZE_OVERFLOW 9
 
 // An output byte is also an input byte, a byte of the other output, or a scratch byte (or the
@@ -273,10 +280,10 @@ extern "C" {
 //
 // Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
 // `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_UNKNOWN_METHOD`, `_UNKNOWN_POLICY`,
-// `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`, `_OUT_OF_MEMORY`,
-// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error but `_INTERNAL` no
-// output byte has been written (after `_INTERNAL`, a library bug, the outputs may be partly
-// written: see `TBASIS_ERROR_INTERNAL`).
+// `_NO_LEGACY_FORM`, `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`,
+// `_OUT_OF_MEMORY`, `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error but
+// `_INTERNAL` no output byte has been written (after `_INTERNAL`, a library bug, the outputs may
+// be partly written: see `TBASIS_ERROR_INTERNAL`).
 //
 // # Safety
 // Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -296,7 +303,8 @@ tbasis_status tbasis_generate(const struct tbasis_mesh *mesh,
 // gets that side's own frame and `w` (README, "Degenerate-UV policies").
 //
 // Needs the same scratch as `tbasis_generate` (`tbasis_scratch_size`), allocates nothing more
-// per corner, and gives the same `report`; `threads` changes no bit.
+// per corner, and gives the same `report` (but for `fallback_vertices` with method MIKKTSPACE:
+// see `tbasis_report`); `threads` changes no bit.
 //
 // - `mesh`, `options`, `report`: as for `tbasis_generate` (`options` and `report` may be NULL).
 // - `tangents`: `(corner_count - 1) * tangents_stride + 16` bytes, written only on `TBASIS_OK`;
@@ -412,7 +420,8 @@ tbasis_status tbasis_calculate_tangent_array(long vertex_count,
 //   when `V` is 0; with policy REJECT at least `29*V + 3`, in which the degenerate test runs
 //   first.
 //
-// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
+// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows, and
+// for method MIKKTSPACE past 2^30 - 1 vertices or corners (`TBASIS_ERROR_SIZE_OVERFLOW`).
 // `options` may be NULL (the defaults).
 //
 // # Safety

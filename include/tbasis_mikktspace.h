@@ -104,7 +104,10 @@ tbool genTangSpace(const SMikkTSpaceContext *pContext, const float fAngularThres
  * default, as mikktspace.c) or less, the calling thread alone. Results are the same on any count;
  * callbacks always run on the calling thread. Each call reads the count once, when it starts, so a
  * call already running keeps its count, and calls running at the same time each use up to this
- * many workers. Not in mikktspace.h: declare it, or include this header, to use it. */
+ * many workers. With more than 1, the standard library's bookkeeping to start a worker thread (a
+ * few dozen bytes per thread) is the one allocation that cannot fail softly: the process ends
+ * there, where with 1 a call returns 0 when memory runs out. Not in mikktspace.h: declare it, or
+ * include this header, to use it. */
 void tbasis_mikktspace_set_threads(int threads);
 
 #ifdef __cplusplus

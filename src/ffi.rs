@@ -80,7 +80,8 @@ pub struct tbasis_options {
 #[derive(Clone, Copy)]
 pub struct tbasis_output {
     /// float x, y, z, w written into the first 16 bytes of each vertex: unit tangent and
-    /// handedness w = +1 or -1; `(vertex_count - 1) * tangents_stride + 16` bytes. Required.
+    /// handedness w = +1 or -1; `(vertex_count - 1) * tangents_stride + 16` bytes. Required
+    /// (NULL only with no vertex).
     pub tangents: *mut c_void,
     /// Bytes from one tangent to the next; at least 16.
     pub tangents_stride: usize,
@@ -107,7 +108,9 @@ pub struct tbasis_report {
     pub degenerate_triangles: usize,
     /// Index of the first such triangle; `TBASIS_NO_TRIANGLE` when there is none.
     pub first_degenerate_triangle: usize,
-    /// Vertices given the fallback frame built from their normal alone (never with LEGACY).
+    /// Vertices given the fallback frame built from their normal alone: never with LEGACY, but
+    /// with method MIKKTSPACE (whose default policy is LEGACY) the vertices no triangle uses, in
+    /// `tbasis_generate`'s report only (`tbasis_generate_corners` writes no vertex).
     pub fallback_vertices: usize,
     /// Vertices used by non-degenerate triangles of both UV orientations (mirror folds).
     pub mirrored_vertices: usize,
@@ -287,10 +290,10 @@ fn options_of(options: Option<tbasis_options>) -> Result<Options, Failure> {
 ///
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INVALID_INDEX_COUNT`,
 /// `_INDEX_OUT_OF_RANGE`, `_INVALID_INDEX_TYPE`, `_UNKNOWN_METHOD`, `_UNKNOWN_POLICY`,
-/// `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`, `_OUT_OF_MEMORY`,
-/// `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error but `_INTERNAL` no
-/// output byte has been written (after `_INTERNAL`, a library bug, the outputs may be partly
-/// written: see `TBASIS_ERROR_INTERNAL`).
+/// `_NO_LEGACY_FORM`, `_UNKNOWN_FLAGS`, `_SIZE_OVERFLOW`, `_OVERLAP`, `_DEGENERATE_UV`,
+/// `_OUT_OF_MEMORY`, `_SCRATCH_TOO_SMALL`, `_INVALID_THRESHOLD` or `_INTERNAL`. On any error but
+/// `_INTERNAL` no output byte has been written (after `_INTERNAL`, a library bug, the outputs may
+/// be partly written: see `TBASIS_ERROR_INTERNAL`).
 ///
 /// # Safety
 /// Every non-NULL pointer must be valid for the bytes documented above for the whole call.
@@ -409,7 +412,8 @@ unsafe fn caller_scratch<'a>(
 /// gets that side's own frame and `w` (README, "Degenerate-UV policies").
 ///
 /// Needs the same scratch as `tbasis_generate` (`tbasis_scratch_size`), allocates nothing more
-/// per corner, and gives the same `report`; `threads` changes no bit.
+/// per corner, and gives the same `report` (but for `fallback_vertices` with method MIKKTSPACE:
+/// see `tbasis_report`); `threads` changes no bit.
 ///
 /// - `mesh`, `options`, `report`: as for `tbasis_generate` (`options` and `report` may be NULL).
 /// - `tangents`: `(corner_count - 1) * tangents_stride + 16` bytes, written only on `TBASIS_OK`;
@@ -646,7 +650,8 @@ pub unsafe extern "C" fn tbasis_calculate_tangent_array(
 ///   when `V` is 0; with policy REJECT at least `29*V + 3`, in which the degenerate test runs
 ///   first.
 ///
-/// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows.
+/// Returns `SIZE_MAX` when `mesh` is NULL, the options are invalid or the size overflows, and
+/// for method MIKKTSPACE past 2^30 - 1 vertices or corners (`TBASIS_ERROR_SIZE_OVERFLOW`).
 /// `options` may be NULL (the defaults).
 ///
 /// # Safety

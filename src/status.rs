@@ -8,9 +8,10 @@ pub type tbasis_status = u32;
 
 /// Success.
 pub const TBASIS_OK: tbasis_status = 0;
-/// A required pointer is NULL: `mesh`, `output`, `output->tangents`, the `tangents` of
-/// `tbasis_generate_corners` when the mesh has corners, or a vertex or index buffer whose count is
-/// nonzero (`texcoords` may be NULL except with policy LEGACY or method MIKKTSPACE).
+/// A required pointer is NULL: `mesh`, `output`, `output->tangents` when the mesh has vertices,
+/// the `tangents` of `tbasis_generate_corners` when the mesh has corners, or a vertex or index
+/// buffer whose count is nonzero (`texcoords` may be NULL except with policy LEGACY or method
+/// MIKKTSPACE).
 pub const TBASIS_ERROR_NULL_POINTER: tbasis_status = 1;
 /// A stride is smaller than its element: 12 bytes for positions and normals, 8 for texcoords,
 /// 16 for tangents, 12 for bitangents.
@@ -27,7 +28,8 @@ pub const TBASIS_ERROR_UNKNOWN_METHOD: tbasis_status = 6;
 pub const TBASIS_ERROR_UNKNOWN_POLICY: tbasis_status = 7;
 /// `options->flags` has a bit that no `TBASIS_FLAG_*` names.
 pub const TBASIS_ERROR_UNKNOWN_FLAGS: tbasis_status = 8;
-/// `stride * count`, or the address range a buffer spans, overflows.
+/// `stride * count`, or the address range a buffer spans, overflows; or, with method MIKKTSPACE,
+/// the mesh has more than 2^30 - 1 vertices or corners (its working arrays index them in 32 bits).
 pub const TBASIS_ERROR_SIZE_OVERFLOW: tbasis_status = 9;
 /// An output byte is also an input byte, a byte of the other output, or a scratch byte (or the
 /// scratch shares a byte with an input). Interleaving outputs between inputs is fine.

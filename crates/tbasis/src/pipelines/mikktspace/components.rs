@@ -140,7 +140,9 @@ pub(crate) fn evaluate(
 
     // 4. The groups set aside and the searched ones, each as mikktspace.c evaluates a group:
     //    members in ascending order.
-    set_aside.sort_by_key(|&[root, _]| root);
+    //    Unstable, so in place (a stable sort allocates, and that allocation cannot fail softly);
+    //    the same order, since the pairs differ and each root's corners were pushed in order.
+    set_aside.sort_unstable();
     let mut spilled: Vec<Spilled<Vec3>> = Vec::new();
     let mut out = Written {
         spaces,
