@@ -338,11 +338,21 @@ def test_split_errors(mesh: Mesh) -> None:
         "143 indices .* must be a multiple of 3",
         lambda: tbasis.split_corners(mesh.indices[:-1], mesh.count, corners[:-1]),
     )
-    raises(
-        tbasis.InvalidLayoutError,
-        "vertex_count must not be negative",
-        lambda: tbasis.split_corners(mesh.indices, -1, corners),
+    for count in (-1, 2**64):
+        raises(
+            tbasis.InvalidLayoutError,
+            r"vertex_count must be between 0 and 2\*\*64 - 1",
+            lambda: tbasis.split_corners(mesh.indices, count, corners),
+        )
+    # An int64 index of 2**32 or more cannot reach the library: refused, not wrapped around.
+    wide = np.array([0, 1, 2**32 + 1], dtype=np.int64)
+    error = raises(
+        tbasis.IndexOutOfRangeError,
+        r"index 2 \(triangle 0, corner 2\) is 4294967297: indices are 32-bit",
+        lambda: tbasis.split_corners(wide, 2**33, np.zeros((3, 4), np.float32)),
     )
+    assert isinstance(error, tbasis.IndexOutOfRangeError)
+    assert (error.position, error.value, error.status) == (2, 2**32 + 1, None)
     not_a_count: Any = 3.0
     raises(
         tbasis.InvalidDtypeError,
@@ -367,11 +377,14 @@ def test_split_errors(mesh: Mesh) -> None:
     )
     assert isinstance(source_error, tbasis.IndexOutOfRangeError)
     assert (source_error.position, source_error.value, source_error.triangle) == (1, 4, None)
+    raises(tbasis.InvalidDtypeError, "sources must hold integers", lambda: tbasis.apply_split(np.zeros((4, 2)), [0.5]))
     raises(
-        tbasis.InvalidDtypeError,
-        "sources must be a one-dimensional integer array",
-        lambda: tbasis.apply_split(np.zeros((4, 2)), [0.5]),
+        tbasis.InvalidLayoutError,
+        r"sources must have shape \(k,\), not \(2, 1\)",
+        lambda: tbasis.apply_split(np.zeros((4, 2)), np.zeros((2, 1), np.int64)),
     )
+    # Nothing split: an empty list of sources (numpy reads it as float64) gives the rows as they were.
+    assert np.array_equal(tbasis.apply_split(np.arange(8.0).reshape(4, 2), []), np.arange(8.0).reshape(4, 2))
     raises(tbasis.InvalidLayoutError, "not be a scalar", lambda: tbasis.apply_split(np.float32(1), [0]))
 
 
@@ -469,3 +482,55 @@ def test_errors_survive_pickling(mesh: Mesh) -> None:
     again = pickle.loads(pickle.dumps(caught.value))
     assert type(again) is tbasis.IndexOutOfRangeError and str(again) == str(caught.value)
     assert (again.position, again.value, again.triangle, again.status) == (2, 500, 0, 4)
+
+
+def test_options_are_checked_before_the_indices_whatever_their_dtype(mesh: Mesh) -> None:
+    unknown: Any = "nope"
+    for dtype in (np.uint32, np.int64):
+        bad = mesh.indices.astype(dtype)
+        bad[1] = mesh.count
+        raises(
+            tbasis.InvalidOptionError,
+            "method must be one of",
+            lambda: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, bad, method=unknown),
+        )
+        error = raises(
+            tbasis.IndexOutOfRangeError,
+            r"index 1 \(triangle 0, corner 1\)",
+            lambda: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, bad),
+        )
+        assert error.status == 4  # the library's check, for every index dtype
+    flag: Any = "no"
+    raises(
+        tbasis.InvalidOptionError,
+        "flip_v must be True or False, not 'no'",
+        lambda: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, flip_v=flag),
+    )
+
+
+def test_an_input_given_as_another_array_like_is_checked_for_overlap(mesh: Mesh) -> None:
+    buffer = np.zeros((mesh.count, 4), dtype=np.float32)
+    buffer[:, :3] = mesh.positions
+
+    class ArrayLike:
+        def __array__(self, dtype: Any = None, copy: Any = None) -> NDArray[Any]:
+            return buffer[:, :3]
+
+    before = buffer.tobytes()
+    raises(
+        tbasis.OverlapError,
+        "the tangents output shares bytes with the positions buffer",
+        lambda: tbasis.generate(ArrayLike(), mesh.normals, mesh.uvs, mesh.indices, out=buffer),
+    )
+    assert buffer.tobytes() == before
+
+
+def test_an_empty_list_of_indices_is_an_empty_index_array(mesh: Mesh) -> None:
+    tangents = tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, [])
+    assert tangents.shape == (mesh.count, 4) and np.all(np.isfinite(tangents))
+
+
+def test_a_copy_numpy_cannot_allocate_is_out_of_memory_error() -> None:
+    huge = np.broadcast_to(np.zeros(3), (2**40, 3))  # float64, so converted: 12 TiB of float32
+    error = raises(tbasis.OutOfMemoryError, "no memory for a copy of positions", lambda: tbasis.generate(huge, huge, None))
+    assert error.status is None and isinstance(error, MemoryError)

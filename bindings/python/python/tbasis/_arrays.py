@@ -9,14 +9,17 @@ written where they are. Any other array is converted once into a packed copy: an
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._errors import InvalidDtypeError, InvalidLayoutError, OverlapError, out_of_range
+from ._errors import IndexOutOfRangeError, InvalidDtypeError, InvalidLayoutError, OutOfMemoryError, OverlapError
+from ._errors import out_of_range
 
 _FLOAT32 = np.dtype(np.float32)
+# One past the largest index the library reads (uint32).
+_INDEX_END = 1 << 32
 _INDEX_TYPES = (np.dtype(np.uint16), np.dtype(np.uint32))
 # TBASIS_ERROR_OVERLAP, the status the library gives the same refusal.
 _OVERLAP = 10
@@ -31,7 +34,15 @@ def rows(name: str, array: ArrayLike, width: int) -> NDArray[np.float32]:
         raise InvalidLayoutError(f"{name} must have shape (n, {width}), not {data.shape}")
     if data.dtype == _FLOAT32 and _rows_in_place(data, width):
         return data
-    return np.array(data, dtype=np.float32, order="C")
+    return converted(name, lambda: np.array(data, dtype=np.float32, order="C"))
+
+
+def converted(name: str, make: Callable[[], NDArray[Any]]) -> NDArray[Any]:
+    """The array ``make`` returns, numpy's failure to allocate it as ``OutOfMemoryError``."""
+    try:
+        return make()
+    except MemoryError:
+        raise OutOfMemoryError(f"no memory for a copy of {name}") from None
 
 
 def vectors(name: str, array: ArrayLike, width: int) -> NDArray[Any]:
@@ -56,7 +67,7 @@ def output(
     width = shape[-1]
     count = int(np.prod(shape[:-1], dtype=np.int64))
     if out is None:
-        return np.empty((count, width), dtype=np.float32), None
+        return converted(name, lambda: np.empty((count, width), dtype=np.float32)), None
     if not isinstance(out, np.ndarray):
         raise InvalidDtypeError(f"{name} must be a numpy array of dtype float32, not {type(out).__name__}")
     if out.dtype.kind != "f" or out.dtype.itemsize != 4:
@@ -70,7 +81,7 @@ def output(
     in_place = count == 0 or np.may_share_memory(flat, out)
     if in_place and flat.dtype == _FLOAT32 and _rows_in_place(flat, width):
         return flat, None
-    return np.empty((count, width), dtype=np.float32), out
+    return converted(name, lambda: np.empty((count, width), dtype=np.float32)), out
 
 
 def refuse_overlap(outputs: dict[str, Any], inputs: dict[str, Any]) -> None:
@@ -78,10 +89,11 @@ def refuse_overlap(outputs: dict[str, Any], inputs: dict[str, Any]) -> None:
 
     Judged on the caller's arrays, before any conversion: where the library cannot write ``out``
     in place it writes a copy, which shares nothing, and the result copied back would overwrite
-    an input. ``None`` and arrays numpy creates from other objects share nothing.
+    an input. An input that is not a numpy array is judged by the array numpy reads it as (a
+    view of its memory where it exposes one); ``None`` shares nothing.
     """
     given = [(name, array) for name, array in outputs.items() if isinstance(array, np.ndarray)]
-    read = [(name, array) for name, array in inputs.items() if isinstance(array, np.ndarray)]
+    read = [(name, np.asarray(array)) for name, array in inputs.items() if array is not None]
     for k, (written, out) in enumerate(given):
         for other, array in read + given[k + 1 :]:
             # The bounds test first: exact answers on interleaved views cost more.
@@ -101,13 +113,16 @@ def indices(array: Optional[ArrayLike], vertex_count: int) -> tuple[Optional[NDA
     """The flat uint16/uint32 index array the library reads (None: unindexed), and the shape the
     caller gave, ``(k,)`` or ``(m, 3)``.
 
-    Other integer types are converted once to uint32, after checking that every index is in
-    range (a negative or huge one would not survive the conversion). uint16 and uint32 indices
-    are checked by the library.
+    Other integer types are converted once to uint32, after checking that every index is one
+    (a negative one or one of 2**32 or more would not survive the conversion); the library checks
+    them against the vertex count, as it checks uint16 and uint32 indices. An empty list is an
+    empty index array.
     """
     if array is None:
         return None, ()
     data = np.asarray(array)
+    if data.size == 0 and data.dtype.kind == "f":
+        data = data.astype(np.uint32)  # numpy reads [] as float64
     if data.dtype.kind not in "iu":
         raise InvalidDtypeError(
             f"indices must be integers (uint16 and uint32 are read in place), not dtype {data.dtype}"
@@ -119,11 +134,20 @@ def indices(array: Optional[ArrayLike], vertex_count: int) -> tuple[Optional[NDA
         if flat.size > 1 and flat.strides[0] < flat.itemsize:
             flat = np.ascontiguousarray(flat)
         return flat, data.shape
-    outside = np.flatnonzero((flat < 0) | (flat >= vertex_count))
+    outside = np.flatnonzero((flat < 0) | (flat >= _INDEX_END))
     if outside.size:
         position = int(outside[0])
-        raise out_of_range(position, int(flat[position]), vertex_count)
-    return flat.astype(np.uint32), data.shape
+        value = int(flat[position])
+        if value < 0 or vertex_count <= _INDEX_END:
+            raise out_of_range(position, value, vertex_count)
+        triangle = position // 3
+        raise IndexOutOfRangeError(
+            f"index {position} (triangle {triangle}, corner {position % 3}) is {value}: indices are 32-bit",
+            position,
+            value,
+            triangle,
+        )
+    return converted("indices", lambda: flat.astype(np.uint32)), data.shape
 
 
 def _rows_in_place(data: NDArray[Any], width: int) -> bool:

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from . import _native
 from ._arrays import indices as index_array
 from ._arrays import deliver, output, refuse_overlap, rows
-from ._errors import InvalidDtypeError, InvalidLayoutError, from_library
+from ._errors import InvalidDtypeError, InvalidLayoutError, InvalidOptionError, from_library
 from ._options import Method, MethodName, Policy, PolicyName, method_code, policy_code, threads_value, threshold_value
 
 __all__ = ["Report", "generate", "generate_corners"]
@@ -88,6 +88,8 @@ class _Options(NamedTuple):
 def _options(
     method: MethodLike, policy: PolicyLike, threshold: Optional[float], flip_v: bool, threads: int
 ) -> _Options:
+    if not isinstance(flip_v, (bool, np.bool_)):
+        raise InvalidOptionError(f"flip_v must be True or False, not {flip_v!r}")
     return _Options(
         method_code(method), policy_code(policy), threshold_value(threshold), bool(flip_v), threads_value(threads)
     )
@@ -219,8 +221,8 @@ def generate(
     ``tbasis.Error`` is raised and neither ``out`` nor ``bitangents`` has been written (but for
     ``tbasis.InternalError``, a bug, after which they may be partly written).
     """
-    mesh = _mesh(positions, normals, texcoords, indices)
     options = _options(method, policy, threshold, flip_v, threads)
+    mesh = _mesh(positions, normals, texcoords, indices)
     bitangents_out = bitangents if isinstance(bitangents, np.ndarray) else None
     if bitangents_out is None and not isinstance(bitangents, (bool, np.bool_)):
         raise InvalidDtypeError(f"bitangents must be True, False or a float32 array, not {type(bitangents).__name__}")
@@ -317,8 +319,8 @@ def generate_corners(
 
     Returns the tangents, or ``(tangents, report)`` with ``report=True``.
     """
-    mesh = _mesh(positions, normals, texcoords, indices)
     options = _options(method, policy, threshold, flip_v, threads)
+    mesh = _mesh(positions, normals, texcoords, indices)
     refuse_overlap({"tangents": out}, _inputs(positions, normals, texcoords, indices))
     tangents, pending = output("out", out, (mesh.corner_count, 4))
     try:

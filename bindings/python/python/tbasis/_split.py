@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _native
 from ._arrays import indices as index_array
-from ._arrays import rows
+from ._arrays import converted, rows
 from ._errors import IndexOutOfRangeError, InvalidDtypeError, InvalidLayoutError, from_library
 
 __all__ = ["Split", "split_corners", "apply_split"]
@@ -41,8 +41,8 @@ def split_corners(indices: Optional[ArrayLike], vertex_count: SupportsIndex, cor
         count = operator.index(vertex_count)
     except TypeError:
         raise InvalidDtypeError(f"vertex_count must be an integer, not {vertex_count!r}") from None
-    if count < 0:
-        raise InvalidLayoutError(f"vertex_count must not be negative, not {count}")
+    if not 0 <= count < 1 << 64:
+        raise InvalidLayoutError(f"vertex_count must be between 0 and 2**64 - 1, not {count}")
     flat, shape = index_array(indices, count)
     corners = count if flat is None else flat.size
     tangents = rows("corner_tangents", corner_tangents, 4)
@@ -65,10 +65,12 @@ def apply_split(attribute: ArrayLike, sources: ArrayLike) -> NDArray[Any]:
     if data.ndim == 0:
         raise InvalidLayoutError("attribute must have one row per vertex, not be a scalar")
     picks = np.asarray(sources)
-    if picks.dtype.kind not in "iu" or picks.ndim != 1:
-        raise InvalidDtypeError(
-            f"sources must be a one-dimensional integer array, not {picks.dtype} of shape {picks.shape}"
-        )
+    if picks.size == 0 and picks.dtype.kind == "f":
+        picks = picks.astype(np.intp)  # numpy reads [] as float64
+    if picks.dtype.kind not in "iu":
+        raise InvalidDtypeError(f"sources must hold integers, not dtype {picks.dtype}")
+    if picks.ndim != 1:
+        raise InvalidLayoutError(f"sources must have shape (k,), not {picks.shape}")
     outside = np.flatnonzero((picks < 0) | (picks >= len(data)))
     if outside.size:
         position = int(outside[0])
@@ -76,4 +78,4 @@ def apply_split(attribute: ArrayLike, sources: ArrayLike) -> NDArray[Any]:
         raise IndexOutOfRangeError(
             f"sources[{position}] is {value}, not in range for an attribute of {len(data)} rows", position, value, None
         )
-    return np.concatenate((data, data[picks]))
+    return converted("attribute", lambda: np.concatenate((data, data[picks])))
