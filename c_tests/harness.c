@@ -659,6 +659,53 @@ static void test_out_of_memory(void)
 }
 
 /* ---------------------------------------------------------------------------------------------
+ * Several workers (one per 16384 triangles at most) give the calling thread's bits, per vertex
+ * and per corner, for every method, and for LEGACY
+ */
+
+static void test_threads(const test_mesh *m)
+{
+    const tbasis_mesh desc = mesh_description(m, TBASIS_INDEX_U32);
+    const size_t vertices = desc.vertex_count, corners = desc.index_count;
+    float *results[2];
+    uint32_t method;
+    int k, t;
+    results[0] = calloc(4 * corners + 4 * vertices, sizeof(float));
+    results[1] = calloc(4 * corners + 4 * vertices, sizeof(float));
+    if (!check(results[0] && results[1], "threads: out of memory") ||
+        !check(corners / 3 >= 2 * 16384, "threads: %zu triangles make one worker", corners / 3))
+        goto done;
+    /* Methods LENGYEL to MIKKTSPACE with policy INHERIT, then LENGYEL with LEGACY (method 0). */
+    for (method = TBASIS_METHOD_LENGYEL; method <= TBASIS_METHOD_MIKKTSPACE + 1; method++) {
+        int legacy = method > TBASIS_METHOD_MIKKTSPACE;
+        tbasis_options options = policy_options(legacy ? TBASIS_DEGENERATE_LEGACY : TBASIS_DEGENERATE_INHERIT);
+        char what[96];
+        if (!legacy)
+            options.method = method;
+        for (k = 0; k < 2; k++) {
+            tbasis_output output;
+            memset(&output, 0, sizeof output);
+            output.tangents = results[k];
+            output.tangents_stride = 16;
+            options.threads = (uint32_t)(k + 1);
+            snprintf(what, sizeof what, "threads: method %u%s, %d thread(s)", (unsigned)options.method,
+                     legacy ? " LEGACY" : "", k + 1);
+            t = expect_status(what, tbasis_generate(&desc, &options, &output, NULL), TBASIS_OK);
+            t = t && expect_status(what, tbasis_generate_corners(&desc, &options, results[k] + 4 * vertices, 16, NULL),
+                                   TBASIS_OK);
+            if (!t)
+                goto done;
+        }
+        snprintf(what, sizeof what, "threads: method %u%s, 2 threads against 1", (unsigned)options.method,
+                 legacy ? " LEGACY" : "");
+        check_float_bits(what, results[0], results[1], 4 * vertices + 4 * corners);
+    }
+done:
+    free(results[0]);
+    free(results[1]);
+}
+
+/* ---------------------------------------------------------------------------------------------
  * Every error status, and nothing written when one is returned
  */
 
@@ -1185,7 +1232,8 @@ int main(int argc, char **argv)
     const int nonfinite[MESHES] = {0, 1, 0, 1, 1};
     test_mesh corner_grids[2];
     fixture *f = calloc(1, sizeof *f);
-    int made[MESHES], k, small_made, corner_grids_made;
+    test_mesh threads_grid;
+    int made[MESHES], k, small_made, corner_grids_made, threads_made;
     tbasis_status s;
 
     memset(meshes, 0, sizeof meshes);
@@ -1197,6 +1245,7 @@ int main(int argc, char **argv)
     small_made = mesh_grid(&small, 5, 4, 0) == 0;
     corner_grids_made = mesh_grid(&corner_grids[0], 16, 12, 0) == 0;
     corner_grids_made = mesh_grid(&corner_grids[1], 12, 9, 1) == 0 && corner_grids_made;
+    threads_made = mesh_grid(&threads_grid, 130, 130, 0) == 0;
 
     test_version_and_strings();
     for (k = 0; k < MESHES; k++)
@@ -1216,6 +1265,8 @@ int main(int argc, char **argv)
         test_scratch(&meshes[0]);
         test_scratch_sizes(&meshes[0]);
     }
+    if (check(threads_made, "threads grid: out of memory"))
+        test_threads(&threads_grid);
     test_out_of_memory();
     if (check(f != NULL && small_made, "status fixture: out of memory")) {
         f->source = &small;
@@ -1246,6 +1297,8 @@ int main(int argc, char **argv)
         mesh_free(&small);
     mesh_free(&corner_grids[0]);
     mesh_free(&corner_grids[1]);
+    if (threads_made)
+        mesh_free(&threads_grid);
     free(f);
     return checks_failed > 0 ? 1 : 0;
 }
