@@ -240,6 +240,31 @@ def test_read_only_out_is_refused(mesh: Mesh) -> None:
     assert not out.any()
 
 
+def test_read_only_or_overlapping_bitangents_are_refused_and_an_unknown_policy_name(mesh: Mesh) -> None:
+    bitangents = np.zeros((mesh.count, 3), dtype=np.float32)
+    bitangents.flags.writeable = False
+    raises(
+        tbasis.InvalidLayoutError,
+        "bitangents is read-only",
+        lambda: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, bitangents=bitangents),
+    )
+    block = np.zeros((mesh.count, 6), dtype=np.float32)
+    block[:, :3] = mesh.positions
+    before = block.copy()
+    raises(
+        tbasis.OverlapError,
+        "the bitangents output shares bytes with the positions buffer",
+        lambda: tbasis.generate(block[:, :3], mesh.normals, mesh.uvs, mesh.indices, bitangents=block[:, 2:5]),
+    )
+    assert np.array_equal(block, before)
+    unknown: Any = "skipp"
+    raises(
+        tbasis.InvalidOptionError,
+        "policy must be one of",
+        lambda: tbasis.generate(mesh.positions, mesh.normals, mesh.uvs, mesh.indices, policy=unknown),
+    )
+
+
 def test_out_overlapping_an_input_is_refused(mesh: Mesh) -> None:
     block = np.zeros((mesh.count, 8), dtype=np.float32)
     block[:, :3], block[:, 3:6] = mesh.positions, mesh.normals
