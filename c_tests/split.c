@@ -207,8 +207,33 @@ void test_split_statuses(const test_mesh *m)
     expect_status("copy: source out of range", tbasis_copy_split_vertices(attribute, 12, 12, 6, copy_sources, 2),
                   TBASIS_ERROR_INDEX_OUT_OF_RANGE);
     check(sentinel_intact(attribute, sizeof attribute), "copy: the attribute changed on error");
+    /* With nothing to copy, the pointers may be NULL; the sources are still checked. */
+    expect_status("copy: element size 0, NULL attribute, source out of range",
+                  tbasis_copy_split_vertices(NULL, 12, 0, 6, copy_sources, 2), TBASIS_ERROR_INDEX_OUT_OF_RANGE);
     copy_sources[1] = 5;
+    expect_status("copy: element size 0, NULL attribute", tbasis_copy_split_vertices(NULL, 12, 0, 6, copy_sources, 2),
+                  TBASIS_OK);
+    expect_status("copy: nothing appended, NULL buffers", tbasis_copy_split_vertices(NULL, 12, 12, 6, NULL, 0),
+                  TBASIS_OK);
     if (expect_status("copy", tbasis_copy_split_vertices(attribute, 12, 12, 6, copy_sources, 2), TBASIS_OK))
         check(memcmp(attribute + 18, attribute, 12) == 0 && memcmp(attribute + 21, attribute + 15, 12) == 0,
               "copy: appended vertices are not copies of their sources");
+
+    /* A stride larger than the element: the bytes between elements are left as they were. */
+    {
+        float padded[8 * 4], before[8 * 4];
+        size_t v;
+        int gaps_intact = 1;
+        sentinel_fill(padded, sizeof padded);
+        for (v = 0; v < 6; v++)
+            padded[4 * v] = (float)v;
+        memcpy(before, padded, sizeof padded);
+        if (expect_status("copy: stride 16, element 12", tbasis_copy_split_vertices(padded, 16, 12, 6, copy_sources, 2),
+                          TBASIS_OK)) {
+            for (v = 0; v < 8; v++)
+                gaps_intact &= memcmp(&padded[4 * v + 3], &before[4 * v + 3], sizeof(float)) == 0;
+            check(padded[24] == 0.0f && padded[28] == 5.0f && gaps_intact,
+                  "copy: stride 16: the copies or the gaps between elements are wrong");
+        }
+    }
 }

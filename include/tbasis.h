@@ -368,7 +368,8 @@ tbasis_status tbasis_split_corners(const struct tbasis_mesh *mesh,
 //   `element_size` bytes `stride` bytes apart: room for the appended vertices after the others;
 // - `stride`: at least `element_size`;
 // - `sources`, `appended_count`: as `tbasis_split_corners` returned them; every source below
-//   `vertex_count`, and `sources` outside the address range of `attribute`.
+//   `vertex_count` (checked even when `element_size` is 0, when nothing is copied and
+//   `attribute` may be NULL), and `sources` outside the address range of `attribute`.
 //
 // Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
 // `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error but `_INTERNAL`

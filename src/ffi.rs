@@ -537,7 +537,8 @@ pub unsafe extern "C" fn tbasis_split_corners(
 ///   `element_size` bytes `stride` bytes apart: room for the appended vertices after the others;
 /// - `stride`: at least `element_size`;
 /// - `sources`, `appended_count`: as `tbasis_split_corners` returned them; every source below
-///   `vertex_count`, and `sources` outside the address range of `attribute`.
+///   `vertex_count` (checked even when `element_size` is 0, when nothing is copied and
+///   `attribute` may be NULL), and `sources` outside the address range of `attribute`.
 ///
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
 /// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error but `_INTERNAL`
@@ -560,8 +561,20 @@ pub unsafe extern "C" fn tbasis_copy_split_vertices(
         }
         let total = vertex_count.checked_add(appended_count).ok_or(Error::SizeOverflow)?;
         let source_view = read_view::<u32>(sources.cast(), size_of::<u32>(), appended_count)?;
-        if element_size == 0 || appended_count == 0 {
+        if appended_count == 0 {
             return Ok(());
+        }
+        if element_size == 0 {
+            // Nothing to copy (`attribute` may be NULL), but the sources are checked all the same.
+            return match (0..appended_count).find(|&j| source_view.get(j) as usize >= vertex_count) {
+                Some(position) => Err(Error::SourceOutOfRange {
+                    position,
+                    source: source_view.get(position),
+                    vertex_count,
+                }
+                .into()),
+                None => Ok(()),
+            };
         }
         check_buffer(attribute, stride, total, element_size)?;
         let span = span_bytes(total, stride, element_size)?;
