@@ -454,9 +454,11 @@ void test_scratch_sizes(const test_mesh *m)
             }
         /* MIKKTSPACE: the header's formula, with T = C / 3 triangles; REJECT at least 29 V + 3. */
         options = method_options(TBASIS_METHOD_MIKKTSPACE, 0);
-        expected = 97 * corners + 65 * (corners / 3) + 12 * n + 4 * (2 * n + 2 > corners ? 2 * n + 2 : corners) + 16454;
-        check(tbasis_scratch_size(&desc, &options) == expected, "tbasis_scratch_size (%s, MIKKTSPACE) is %zu, expected %zu",
-              index_type_name(index_types[k]), tbasis_scratch_size(&desc, &options), expected);
+        expected = 97 * corners + 65 * (corners / 3) + 12 * n + 4 * (2 * n + 2 > corners ? 2 * n + 2 : corners) +
+                   16454;
+        check(tbasis_scratch_size(&desc, &options) == expected,
+              "tbasis_scratch_size (%s, MIKKTSPACE) is %zu, expected %zu", index_type_name(index_types[k]),
+              tbasis_scratch_size(&desc, &options), expected);
         options = method_options(TBASIS_METHOD_MIKKTSPACE, TBASIS_DEGENERATE_REJECT);
         check(tbasis_scratch_size(&desc, &options) >= per_vertex, "tbasis_scratch_size (%s, MIKKTSPACE, REJECT)",
               index_type_name(index_types[k]));

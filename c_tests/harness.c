@@ -1214,7 +1214,61 @@ static void test_transforms(void)
                   TBASIS_ERROR_NULL_POINTER);
     expect_status("from_tangent_space, NULL result", tbasis_from_tangent_space(normal, tangent, direction, NULL),
                   TBASIS_ERROR_NULL_POINTER);
+    expect_status("to_tangent_space, NULL normal", tbasis_to_tangent_space(NULL, tangent, direction, to),
+                  TBASIS_ERROR_NULL_POINTER);
+    expect_status("from_tangent_space, NULL direction", tbasis_from_tangent_space(normal, tangent, NULL, to),
+                  TBASIS_ERROR_NULL_POINTER);
+    /* Every frame the header calls invalid, both ways. */
+    {
+        static const float zero3[3] = {0.0f, 0.0f, 0.0f}, zero4[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        static const float no_w[4] = {1.0f, 0.0f, 1.0f, 0.0f}, nan_normal[3] = {0.0f, NAN, 2.0f};
+        static const float inf_tangent[4] = {INFINITY, 0.0f, 1.0f, 1.0f}, huge_direction[3] = {3e38f, 3e38f, 3e38f};
+        static const float huge_normal[3] = {0.0f, 0.0f, 3e38f};
+        const struct {
+            const char *what;
+            const float *normal, *tangent, *direction;
+        } invalid[] = {
+            {"zero normal", zero3, tangent, direction},
+            {"zero tangent", normal, zero4, direction},
+            {"w zero", normal, no_w, direction},
+            {"NaN normal", nan_normal, tangent, direction},
+            {"infinite tangent", normal, inf_tangent, direction},
+            {"overflowing result", huge_normal, tangent, huge_direction},
+        };
+        size_t c;
+        for (c = 0; c < sizeof invalid / sizeof invalid[0]; c++) {
+            char what[96];
+            snprintf(what, sizeof what, "from_tangent_space, %s", invalid[c].what);
+            expect_status(what,
+                          tbasis_from_tangent_space(invalid[c].normal, invalid[c].tangent, invalid[c].direction, to),
+                          TBASIS_ERROR_INVALID_FRAME);
+            if (c == 5)
+                continue; /* to_tangent_space divides by the huge normal: its result is small */
+            snprintf(what, sizeof what, "to_tangent_space, %s", invalid[c].what);
+            expect_status(what,
+                          tbasis_to_tangent_space(invalid[c].normal, invalid[c].tangent, invalid[c].direction, to),
+                          TBASIS_ERROR_INVALID_FRAME);
+        }
+    }
     check(sentinel_intact(to, sizeof to), "a refused transform wrote its result");
+    /* The result may overlap any input: every input is read before it is written. */
+    {
+        float frame[7], want[3];
+        memcpy(frame, normal, sizeof normal);
+        memcpy(frame + 3, tangent, sizeof tangent);
+        if (expect_status("from_tangent_space", tbasis_from_tangent_space(normal, tangent, direction, want),
+                          TBASIS_OK) &&
+            expect_status("from_tangent_space into its normal",
+                          tbasis_from_tangent_space(frame, frame + 3, direction, frame), TBASIS_OK))
+            check(memcmp(frame, want, sizeof want) == 0, "from_tangent_space into its normal differs");
+        memcpy(frame, normal, sizeof normal);
+        memcpy(frame + 3, tangent, sizeof tangent);
+        if (expect_status("to_tangent_space", tbasis_to_tangent_space(normal, tangent, direction, want),
+                          TBASIS_OK) &&
+            expect_status("to_tangent_space into its tangent",
+                          tbasis_to_tangent_space(frame, frame + 3, direction, frame + 3), TBASIS_OK))
+            check(memcmp(frame + 3, want, sizeof want) == 0, "to_tangent_space into its tangent differs");
+    }
     check(strcmp(tbasis_status_string(TBASIS_ERROR_INVALID_FRAME), tbasis_status_string(1000)) != 0,
           "TBASIS_ERROR_INVALID_FRAME has no description of its own");
 }

@@ -1,8 +1,9 @@
 /*
- * Every entry point returns TBASIS_ERROR_INTERNAL, and writes nothing, when the library panics
- * inside it (outputs and reports as they were): run against a library built with the test-only feature fault-injection, with
- * TBASIS_INJECT_PANIC set. Without it, the same calls succeed, so the panic is what the statuses
- * show. Prints "internal N" or "ok N" (N calls) and exits 0 when every call agreed.
+ * Every entry point returns TBASIS_ERROR_INTERNAL, and writes nothing (outputs and reports as they
+ * were), when the library panics inside it: run against a library built with the test-only
+ * feature fault-injection, with TBASIS_INJECT_PANIC set. Without it, the same calls succeed, so
+ * the panic is what the statuses show. Prints "internal N" or "ok N" (N calls) and exits 0 when
+ * every call agreed.
  */
 #include <stdint.h>
 #include <stdio.h>
