@@ -42,7 +42,10 @@ while [ "$#" -gt 0 ]; do
       profile=${1#--profile=}
       shift
       ;;
-    -h | --help) usage ;;
+    -h | --help)
+      echo "usage: $0 PREFIX [--profile release|debug]"
+      exit 0
+      ;;
     -*) usage ;;
     *)
       [ -z "$prefix" ] || usage
