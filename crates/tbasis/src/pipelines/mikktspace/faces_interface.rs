@@ -1,8 +1,8 @@
 //! mikktspace.c's own interface: faces of 3 or 4 vertices read through callbacks, quads split as
 //! it splits them, and every output of `setTSpace` (tangent, bitangent, magnitudes, orientation).
 //!
-//! Each face vertex is a slot of its own, numbered `4 * face + vert` as mikktspace.c numbers it
-//! (`MakeIndex`); the triangles index the slots, and the triangle pipeline runs on them
+//! Each face vertex is a slot of its own (numbered face after face), carrying mikktspace.c's index
+//! for it, `4 * face + vert` (`MakeIndex`); the triangles index the slots, and the triangle pipeline runs on them
 //! ([`super::solve`]) with the three things quads add: the sub-group rule that joins a quad's two
 //! triangles, the orientation one quad's triangles share, and the quad's slots its two triangles
 //! both write (averaged, `AvgTSpace`), or that its degenerate triangle leaves to its good one.
@@ -85,10 +85,12 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     buffers.welded.copy_from_slice(&triangles.slots);
     let mut corners: Vec<Full> = vec_filled(corner_count, Full::DEFAULT)?;
     let mut magnitudes = vec_filled(corner_count / 3, [0.0f32; 2])?;
+    let mut write_order = vec_filled(corner_count, NONE)?;
     let mut extras = FaceExtras {
         face_of: &triangles.face_of,
         magnitudes: &mut magnitudes,
         threshold: threshold_cosine(angular_threshold),
+        write_order: &mut write_order,
     };
     let mut report = Report::default();
     let solved = solve_triangles(
@@ -112,7 +114,7 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
             preserving,
         }
     } else {
-        assemble_slots(&triangles, &buffers, solved.good, &corners, slot_count)?
+        assemble_slots(&triangles, &buffers, solved.good, (&corners, &write_order), slot_count)?
     };
 
     // 4. Degenerate triangles copy a good corner's space (DegenEpilogue), except in a quad whose
@@ -156,35 +158,44 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     Ok(out)
 }
 
-/// Step 3 with quads: each slot from the one or two corners on it that a group reached.
+/// Step 3 with quads: each slot from the one or two corners on it that a group reached, in the
+/// order `GenerateTSpaces` writes them (`write_order`, per good corner): `AvgTSpace` keeps the
+/// first space's bits when the two compare equal (a `-0` against a `+0` in one component), and
+/// the orientation is the last one's.
 fn assemble_slots(
     triangles: &Triangles,
     buffers: &Buffers,
     good: usize,
-    corners: &[Full],
+    (corners, write_order): (&[Full], &[u32]),
     slot_count: usize,
 ) -> Result<Spaces, Error> {
     let mut out = Spaces {
         spaces: vec_filled(slot_count, Full::DEFAULT)?,
         preserving: vec_filled(slot_count, 0u8)?,
     };
-    let mut writer: Vec<u32> = vec_filled(slot_count, NONE)?;
-    for (&t, groups) in buffers.order[..good].iter().zip(&*buffers.assigned) {
-        for (k, &group) in groups.iter().enumerate().filter(|&(_, &g)| g != NONE) {
+    // The write order of the corner a slot holds, while it holds one.
+    let mut written: Vec<u32> = vec_filled(slot_count, NONE)?;
+    for (g, (&t, groups)) in buffers.order[..good].iter().zip(&*buffers.assigned).enumerate() {
+        for k in (0..3).filter(|&k| groups[k] != NONE) {
             let corner = 3 * t as usize + k;
             let slot = triangles.slots[corner] as usize;
-            let (space, preserving) = (corners[corner], buffers.orientation[corner]);
-            if writer[slot] == NONE {
-                out.spaces[slot] = space;
-            } else {
-                out.spaces[slot] = out.spaces[slot].average(space);
-            }
-            if writer[slot] == NONE || group >= writer[slot] {
-                (writer[slot], out.preserving[slot]) = (group, preserving);
-            }
+            let write = (corners[corner], buffers.orientation[corner], write_order[3 * g + k]);
+            (out.spaces[slot], out.preserving[slot]) = match written[slot] {
+                NONE => (write.0, write.1),
+                order => both_writes((out.spaces[slot], out.preserving[slot], order), write),
+            };
+            written[slot] = write.2;
         }
     }
     Ok(out)
+}
+
+/// What `GenerateTSpaces` leaves in a slot written twice, given the two writes (space,
+/// orientation, write order) in either order: `AvgTSpace` of the first and the second, and the
+/// second's orientation.
+fn both_writes(a: (Full, u8, u32), b: (Full, u8, u32)) -> (Full, u8) {
+    let (first, second) = if a.2 < b.2 { (a, b) } else { (b, a) };
+    (first.0.average(second.0), second.1)
 }
 
 /// The triangles of the faces, in face order: per corner its slot and mikktspace.c's index, per
@@ -242,5 +253,29 @@ impl Triangles {
             }
         }
         Ok(triangles)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two spaces equal under `==` whose bits differ (a `-0` against a `+0`): the slot keeps the
+    /// one written first, whichever order the triangles come in, and the last one's orientation.
+    #[test]
+    fn a_slot_written_twice_keeps_the_first_write_of_equal_spaces() {
+        let space = |sign: f32| Full {
+            s: [1.0, sign * 0.0, 0.0],
+            t: [0.0, 1.0, 0.0],
+            mag_s: 1.0,
+            mag_t: 1.0,
+        };
+        let (plus, minus) = (space(1.0), space(-1.0));
+        assert!(plus.average(minus).s[1].is_sign_positive() && minus.average(plus).s[1].is_sign_negative());
+        for (a, b) in [((plus, 1, 7), (minus, 0, 9)), ((minus, 0, 9), (plus, 1, 7))] {
+            let (kept, preserving) = both_writes(a, b);
+            assert!(kept.s[1].is_sign_positive(), "the first write, order 7");
+            assert_eq!(preserving, 0, "the last write's orientation");
+        }
     }
 }

@@ -1,7 +1,7 @@
 //! Groups of triangles around a welded vertex that share one tangent-space orientation
 //! (`Build4RuleGroups` and `AssignRecur`).
 //!
-//! A group starts at the first corner, in triangle order, of a usable triangle not yet in a group,
+//! A group starts at each corner, in triangle order, of a usable triangle that is in no group yet,
 //! and spreads across edges to the triangles around the same welded vertex, depth first (left
 //! neighbour, then right), as long as their UV orientation matches. A triangle with no usable
 //! derivative (`GROUP_WITH_ANY`) takes the orientation of the first group that reaches it: the
@@ -30,7 +30,9 @@ pub(crate) fn stack_words(triangles: usize) -> usize {
 /// Builds the groups at the welded vertices `at` selects (a group keeps to one welded vertex, so
 /// those at the others are left out without changing these) and writes `assigned[g][k]`, the
 /// group of corner `k` of good triangle `g` ([`NONE`] when it has none). `stack` needs
-/// [`stack_words`] of `ids.len()`. Returns the group count.
+/// [`stack_words`] of `ids.len()`. With `write_order`, also writes there each grouped corner's
+/// place in `groups.corners` as built: the order in which `GenerateTSpaces` writes the corners,
+/// group after group, each in `AssignRecur`'s order. Returns the group count.
 pub(crate) fn build(
     ids: &[[u32; 3]],
     neighbors: &[[u32; 3]],
@@ -38,6 +40,7 @@ pub(crate) fn build(
     assigned: &mut [[u32; 3]],
     (groups, stack): (&mut Groups, &mut [u32]),
     at: impl Fn(u32) -> bool,
+    mut write_order: Option<&mut [u32]>,
 ) -> usize {
     assigned.fill([NONE; 3]);
     let mut count = 0usize;
@@ -55,6 +58,9 @@ pub(crate) fn build(
             count += 1;
             assigned[f][i] = group;
             groups.corners[filled] = (3 * f + i) as u32;
+            if let Some(order) = write_order.as_deref_mut() {
+                order[3 * f + i] = filled as u32;
+            }
             filled += 1;
 
             // AssignRecur on the left neighbour, then the right: pushed right first.
@@ -82,6 +88,9 @@ pub(crate) fn build(
                     continue;
                 }
                 groups.corners[filled] = (3 * t + k) as u32;
+                if let Some(order) = write_order.as_deref_mut() {
+                    order[3 * t + k] = filled as u32;
+                }
                 filled += 1;
                 assigned[t][k] = group;
                 for neighbour in [neighbors[t][(k + 2) % 3], neighbors[t][k]] {
@@ -128,6 +137,7 @@ mod tests {
                 &mut assigned,
                 (&mut groups, &mut stack),
                 |_| true,
+                None,
             );
             // The centre's group, then each ring vertex's two corners, in one group each.
             assert_eq!(count, 1 + n, "{n} triangles");

@@ -350,6 +350,10 @@ pub(crate) struct FaceExtras<'a> {
     pub magnitudes: &'a mut [[f32; 2]],
     /// The angular threshold's cosine ([`tspace::threshold_cosine`]).
     pub threshold: f32,
+    /// Per good corner (`3 g + k`, filled by step 7): its place in the order in which
+    /// `GenerateTSpaces` writes the corners (group after group, each in `AssignRecur`'s order),
+    /// which decides the bits where a quad's two triangles meet ([`groups::build`]).
+    pub write_order: &'a mut [u32],
 }
 
 /// How [`solve`] ended: the routes it took, the good triangles (the first of `order`) and the
@@ -541,7 +545,7 @@ fn solve<S: tspace::Space>(
             Some(near) => {
                 let memory = (&mut groups, &mut *stack);
                 let at_near = |id: u32| near[id as usize] != 0;
-                groups::build(ids, neighbors, &mut b.flags[..good], assigned, memory, at_near)
+                groups::build(ids, neighbors, &mut b.flags[..good], assigned, memory, at_near, None)
             }
             None => 0,
         };
@@ -574,7 +578,18 @@ fn solve<S: tspace::Space>(
         });
     }
     let (neighbors, flags, assigned) = (&b.neighbors[..good], &mut b.flags[..good], &mut b.assigned[..good]);
-    let mut group = || groups::build(ids, neighbors, flags, assigned, (&mut groups, &mut *stack), |_| true);
+    let write_order = extras.as_deref_mut().map(|e| &mut e.write_order[..3 * good]);
+    let group = || {
+        groups::build(
+            ids,
+            neighbors,
+            flags,
+            assigned,
+            (&mut groups, &mut *stack),
+            |_| true,
+            write_order,
+        )
+    };
     let group_count = if ranges.ends().len() > 1 {
         parallel::join(|| weigh(threads - 1, Some([&mut *s, &mut *t])), group).1
     } else {
