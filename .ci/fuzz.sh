@@ -32,7 +32,8 @@ fi
 toolchain="${FUZZ_TOOLCHAIN:-}"
 if [[ -z "$toolchain" ]]; then
     if ! rustup toolchain list 2>/dev/null | grep -q '^nightly' && command -v rustup >/dev/null 2>&1; then
-        rustup toolchain install nightly --profile minimal
+        # A failed install leaves the stable fallback below.
+        rustup toolchain install nightly --profile minimal || true
     fi
     if rustup toolchain list 2>/dev/null | grep -q '^nightly'; then
         toolchain=nightly
@@ -46,7 +47,7 @@ fi
 echo "fuzz: toolchain $toolchain ($(cargo "+$toolchain" --version)), ${seconds}s, seed $seed"
 
 log="$(mktemp)"
-trap 'rm -f "$log"' EXIT
+trap 'rm -f "$log" "$log.diff"' EXIT
 
 # fuzz TARGET SECONDS KNOWN [LIBFUZZER OPTIONS...]: replays the inputs in the folder KNOWN (each
 # must pass), then fuzzes from corpus/TARGET and KNOWN for SECONDS.
