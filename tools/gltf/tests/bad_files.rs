@@ -259,21 +259,27 @@ fn an_accessor_offset_that_wraps_around() {
     refused(&file, &output, "accessor 1: too large");
 }
 
-#[test]
-fn a_huge_accessor_without_data() {
-    let (input, output) = folders("zeros");
+/// The mirrored quad whose indices are `count` zeros: an accessor without a bufferView (sparse,
+/// with one substitution, so that it stays valid), a few bytes of JSON whatever `count` is.
+fn quad_with_zero_indices(count: u64) -> Fixture {
     let mut fixture = Fixture::mirrored_quad();
-    // A few bytes of JSON ask for 2 TB of zeros: the indices, sparse, need no bufferView.
     let indices = fixture.primitive(0)["indices"].as_u64().unwrap() as usize;
     let accessor = &mut fixture.json["accessors"][indices];
     let view = accessor.as_object_mut().unwrap().remove("bufferView").unwrap();
-    accessor["count"] = json!(1u64 << 40);
+    accessor["count"] = json!(count);
     accessor["sparse"] = json!({
         "count": 1,
         "indices": { "bufferView": view, "componentType": 5123 },
         "values": { "bufferView": view },
     });
-    let file = fixture.write_gltf(&input, "zeros");
+    fixture
+}
+
+#[test]
+fn a_huge_accessor_without_data() {
+    let (input, output) = folders("zeros");
+    // 2 TB of zeros.
+    let file = quad_with_zero_indices(1 << 40).write_gltf(&input, "zeros");
     refused(
         &file,
         &output,
@@ -314,17 +320,7 @@ fn a_failed_file_leaves_no_output_folder() {
 #[test]
 fn a_file_that_needs_more_memory_than_the_system_gives() {
     let (input, output) = folders("memory");
-    let mut fixture = Fixture::mirrored_quad();
-    let indices = fixture.primitive(0)["indices"].as_u64().unwrap() as usize;
-    let accessor = &mut fixture.json["accessors"][indices];
-    let view = accessor.as_object_mut().unwrap().remove("bufferView").unwrap();
-    accessor["count"] = json!((1u64 << 24) - 1);
-    accessor["sparse"] = json!({
-        "count": 1,
-        "indices": { "bufferView": view, "componentType": 5123 },
-        "values": { "bufferView": view },
-    });
-    let file = fixture.write_glb(&input, "memory");
+    let file = quad_with_zero_indices((1 << 24) - 1).write_glb(&input, "memory");
     let result = std::process::Command::new("sh")
         .args(["-c", "ulimit -v 262144 && exec \"$0\" \"$@\""])
         .arg(env!("CARGO_BIN_EXE_tbasis-gltf"))

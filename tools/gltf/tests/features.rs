@@ -507,17 +507,8 @@ fn glb_without_binary_chunk(dir: &std::path::Path, name: &str, first: Option<ser
     if shift == 1 {
         json["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
     }
-    let glb = gltf::Glb {
-        header: gltf::binary::Header {
-            magic: *b"glTF",
-            version: 2,
-            length: 0,
-        },
-        json: serde_json::to_vec(&json).unwrap().into(),
-        bin: None,
-    };
     let path = dir.join(format!("{name}.glb"));
-    std::fs::write(&path, glb.to_vec().unwrap()).unwrap();
+    common::fixture::write_glb_file(&path, &json, None);
     path
 }
 

@@ -107,17 +107,22 @@ impl Fixture {
     pub fn write_glb(&self, dir: &Path, name: &str) -> std::path::PathBuf {
         let mut json = self.json.clone();
         json["buffers"] = json!([{ "byteLength": self.bin.len() }]);
-        let glb = gltf::Glb {
-            header: gltf::binary::Header {
-                magic: *b"glTF",
-                version: 2,
-                length: 0,
-            },
-            json: serde_json::to_vec(&json).unwrap().into(),
-            bin: Some(self.bin.clone().into()),
-        };
         let path = dir.join(format!("{name}.glb"));
-        std::fs::write(&path, glb.to_vec().unwrap()).unwrap();
+        write_glb_file(&path, &json, Some(&self.bin));
         path
     }
+}
+
+/// Writes a GLB of `json` and, when given, the binary chunk `bin`.
+pub fn write_glb_file(path: &Path, json: &Value, bin: Option<&[u8]>) {
+    let glb = gltf::Glb {
+        header: gltf::binary::Header {
+            magic: *b"glTF",
+            version: 2,
+            length: 0,
+        },
+        json: serde_json::to_vec(json).unwrap().into(),
+        bin: bin.map(|bin| bin.to_vec().into()),
+    };
+    std::fs::write(path, glb.to_vec().unwrap()).unwrap();
 }
