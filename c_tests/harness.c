@@ -675,7 +675,8 @@ static void test_threads(const test_mesh *m)
     if (!check(results[0] && results[1], "threads: out of memory") ||
         !check(corners / 3 >= 2 * 16384, "threads: %zu triangles make one worker", corners / 3))
         goto done;
-    /* Methods LENGYEL to MIKKTSPACE with policy INHERIT, then LENGYEL with LEGACY (method 0). */
+    /* Methods LENGYEL to MIKKTSPACE with policy INHERIT, then LENGYEL with LEGACY (the loop's
+       value past MIKKTSPACE). */
     for (method = TBASIS_METHOD_LENGYEL; method <= TBASIS_METHOD_MIKKTSPACE + 1; method++) {
         int legacy = method > TBASIS_METHOD_MIKKTSPACE;
         tbasis_options options = policy_options(legacy ? TBASIS_DEGENERATE_LEGACY : TBASIS_DEGENERATE_INHERIT);

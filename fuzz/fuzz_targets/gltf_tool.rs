@@ -66,12 +66,13 @@ fuzz_target!(|data: &[u8]| {
         allow_outside_uris: false,
         replace_side_files: false,
         threads: 1,
+        side_files: convert::SideFiles::default(),
     };
     let Ok(asset) = io::parse(data.to_vec(), dir.clone(), false) else {
         return;
     };
     // An accessor without a bufferView is zeros of any count the JSON says (up to
-    // `accessor::MAX_ZEROS` bytes): a mesh that large is slow, not wrong, and would only time out.
+    // `accessor::MAX_ZEROS` elements): a mesh that large is slow, not wrong, and would only time out.
     let accessors = asset.json["accessors"].as_array().into_iter().flatten();
     if accessors
         .filter(|accessor| accessor.get("bufferView").is_none())

@@ -373,6 +373,12 @@ def test_split_errors(mesh: Mesh) -> None:
     )
     assert isinstance(error, tbasis.IndexOutOfRangeError)
     assert (error.position, error.value, error.status) == (2, 2**32 + 1, None)
+    # An index past the vertex count before it is the one named, as the library names the first.
+    raises(
+        tbasis.IndexOutOfRangeError,
+        r"index 1 \(triangle 0, corner 1\) is 9, not in range for 4 vertices",
+        lambda: tbasis.split_corners(np.array([0, 9, 2**32 + 1], np.int64), 4, np.zeros((3, 4), np.float32)),
+    )
     not_a_count: Any = 3.0
     raises(
         tbasis.InvalidDtypeError,

@@ -162,7 +162,8 @@ impl Args {
             "no output given: -o FILE (one input) or --out-dir DIR (any number of inputs); --check writes nothing",
         )?;
         // Side buffers are named from the stem (`STEM.tangents.bin`), which `a.gltf` and `a.GLTF`
-        // share. (A .glb keeps its new data in its binary chunk.)
+        // share. A .glb keeps its new data in its binary chunk where it has one; the rare one that
+        // needs a side buffer has the name checked when it is written (`convert::SideFiles`).
         let mut stems = HashSet::new();
         self.inputs
             .iter()

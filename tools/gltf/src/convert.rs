@@ -1,10 +1,10 @@
 //! One file, start to end: read, plan, compute the primitives and fill their new data (in
 //! parallel), place that data, point URIs at the right files, write.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
 use serde_json::{json, Value};
@@ -30,6 +30,27 @@ pub struct Settings {
     pub replace_side_files: bool,
     /// Threads for the primitives of one file.
     pub threads: usize,
+    /// The side buffers this run writes.
+    pub side_files: SideFiles,
+}
+
+/// The side buffers a run has written or is writing, so that no two inputs of one run write the
+/// same one (`a.gltf` and a `.glb` without a binary chunk, both named `a`, into one folder).
+#[derive(Default)]
+pub struct SideFiles(Mutex<HashSet<PathBuf>>);
+
+impl SideFiles {
+    /// Takes `path` for the file being written, or says which input of the run already has.
+    fn claim(&self, path: &Path) -> Result<(), String> {
+        let mut claimed = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        if claimed.insert(path.to_path_buf()) {
+            return Ok(());
+        }
+        Err(format!(
+            "{} is the side buffer of another input of this run; give the inputs different names",
+            path.display()
+        ))
+    }
 }
 
 /// What was done to one file.
@@ -72,6 +93,9 @@ pub fn convert(job: &Job, settings: &Settings) -> Result<Outcome, String> {
         ));
     }
     let mut outcome = convert_asset(asset, job.output.as_deref(), settings, |files| {
+        for (side_file, _) in &files[..files.len().saturating_sub(1)] {
+            settings.side_files.claim(side_file)?;
+        }
         io::write_files(files, &job.input, settings.replace_side_files)
     })?;
     outcome.elapsed = start.elapsed();

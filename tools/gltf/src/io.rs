@@ -304,8 +304,8 @@ pub fn refuse_to_replace_input(input: &Path, output: &Path) -> Result<(), String
 /// an interrupted run leaves no half-written file and the main file never names a side file that
 /// is missing. When a rename fails, the files already renamed are removed: all of the output or
 /// none of it. A side file that exists is replaced only with `replace_side_files` (the user named
-/// the main file, not it), and put back when the main file cannot be written. New files get `like`'s permissions, and are writable by their owner
-/// (inputs are often read-only).
+/// the main file, not it), and put back when the main file cannot be written. New files get
+/// `like`'s permissions, and are writable by their owner (inputs are often read-only).
 pub fn write_files(files: &Files, like: &Path, replace_side_files: bool) -> Result<(), String> {
     let permissions = fs::metadata(like).map(|m| writable(m.permissions())).ok();
     let mut staged = Vec::new();
@@ -333,42 +333,54 @@ pub fn write_files(files: &Files, like: &Path, replace_side_files: bool) -> Resu
     }
     let main = staged.len().saturating_sub(1);
     let mut placed: Vec<&Path> = Vec::new();
-    // Side files that `replace_side_files` replaces, moved aside until the main file is in place,
-    // and put back if it is not: the output before stays whole. Removed when dropped.
-    let mut set_aside: Vec<(tempfile::TempPath, &Path)> = Vec::new();
+    // Side files that `replace_side_files` replaces, with a second name kept until the main file
+    // is in place, under which they are put back if it is not: the output before stays whole.
+    // The replacement itself is one rename, so an interrupted run leaves one or the other.
+    let mut backups: Vec<(tempfile::TempPath, &Path)> = Vec::new();
     for (k, (file, path)) in staged.into_iter().enumerate() {
         let result = if k == main {
             file.persist(path).map(drop).map_err(|e| e.error)
-        } else {
-            let aside = if replace_side_files { move_aside(path) } else { Ok(None) };
-            aside.and_then(|old| {
-                set_aside.extend(old.map(|old| (old, path.as_path())));
-                file.persist_noclobber(path).map(drop).map_err(|e| e.error)
+        } else if replace_side_files {
+            back_up(path).and_then(|backup| {
+                backups.extend(backup.map(|backup| (backup, path.as_path())));
+                file.persist(path).map(drop).map_err(|e| e.error)
             })
+        } else {
+            file.persist_noclobber(path).map(drop).map_err(|e| e.error)
         };
         if let Err(error) = result {
             for done in placed {
                 let _ = fs::remove_file(done);
             }
-            for (old, path) in set_aside {
-                let _ = old.persist(path);
-            }
-            return Err(if error.kind() == std::io::ErrorKind::AlreadyExists {
+            let mut message = if error.kind() == std::io::ErrorKind::AlreadyExists {
                 format!(
                     "{} exists and this run did not write it; remove it, or pass --force to replace it",
                     path.display()
                 )
             } else {
                 format!("cannot rename into {}: {error}", path.display())
-            });
+            };
+            for (backup, path) in backups {
+                if let Err(failed) = backup.persist(path) {
+                    let kept = failed.path.keep().unwrap_or_default();
+                    message += &format!(
+                        "; the earlier {} could not be put back ({}): it is {}",
+                        path.display(),
+                        failed.error,
+                        kept.display()
+                    );
+                }
+            }
+            return Err(message);
         }
         placed.push(path);
     }
     Ok(())
 }
 
-/// Renames the file at `path`, if there is one, to a new temporary name beside it.
-fn move_aside(path: &Path) -> std::io::Result<Option<tempfile::TempPath>> {
+/// A second name beside the file at `path`, if there is one: a hard link, or a copy where the
+/// file system has none. Removed when dropped.
+fn back_up(path: &Path) -> std::io::Result<Option<tempfile::TempPath>> {
     if fs::symlink_metadata(path).is_err() {
         return Ok(None);
     }
@@ -376,12 +388,16 @@ fn move_aside(path: &Path) -> std::io::Result<Option<tempfile::TempPath>> {
         Some(dir) if !dir.as_os_str().is_empty() => dir,
         _ => Path::new("."),
     };
-    let aside = tempfile::Builder::new()
+    let backup = tempfile::Builder::new()
         .prefix(".tbasis-gltf-old-")
         .tempfile_in(dir)?
         .into_temp_path();
-    fs::rename(path, &aside)?;
-    Ok(Some(aside))
+    // The link needs the name free; the temporary file only reserved it.
+    fs::remove_file(&backup)?;
+    if fs::hard_link(path, &backup).is_err() {
+        fs::copy(path, &backup)?;
+    }
+    Ok(Some(backup))
 }
 
 /// Reserves the file's blocks before the write. On ext4 a file written without them has its

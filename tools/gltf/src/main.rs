@@ -28,6 +28,7 @@ fn main() -> ExitCode {
         replace_side_files: args.force,
         // Cores the file workers leave idle go to the primitives of each file.
         threads: (cores / workers).max(1),
+        side_files: convert::SideFiles::default(),
     };
     let totals = batch::run(&jobs, &settings, workers, args.quiet);
     if totals.failed > 0 && jobs.len() > 1 {

@@ -6,13 +6,16 @@ use std::mem::size_of;
 /// `len` copies of `value`, or what is missing for `what`.
 pub fn filled<T: Clone>(len: usize, value: T, what: &str) -> Result<Vec<T>, String> {
     let mut vec = Vec::new();
-    resize(&mut vec, len, value, what)?;
+    vec.try_reserve_exact(len)
+        .map_err(|_| out_of_memory(len, size_of::<T>(), what))?;
+    vec.resize(len, value);
     Ok(vec)
 }
 
-/// `vec` grown or cut to `len` elements, new ones `value`; on failure, `vec` as it was.
+/// `vec` grown or cut to `len` elements, new ones `value`; on failure, `vec` as it was. Grows
+/// as `Vec` does (room to spare), so that growing by small steps stays linear.
 pub fn resize<T: Clone>(vec: &mut Vec<T>, len: usize, value: T, what: &str) -> Result<(), String> {
-    vec.try_reserve_exact(len.saturating_sub(vec.len()))
+    vec.try_reserve(len.saturating_sub(vec.len()))
         .map_err(|_| out_of_memory(len, size_of::<T>(), what))?;
     vec.resize(len, value);
     Ok(())

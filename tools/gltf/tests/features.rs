@@ -656,3 +656,40 @@ fn quiet_prints_no_summary_and_a_draco_primitive_is_left_as_it_was() {
     assert!(result.status.success() && result.stdout.is_empty());
     assert_eq!(std::fs::read(&quiet).unwrap(), std::fs::read(&output).unwrap());
 }
+
+#[test]
+fn two_inputs_of_one_run_never_write_one_side_buffer() {
+    let dir = tool::fresh_dir("side-buffer-twice");
+    std::fs::create_dir_all(dir.join("a")).unwrap();
+    std::fs::create_dir_all(dir.join("b")).unwrap();
+    let gltf = Fixture::mirrored_quad().write_gltf(&dir.join("a"), "quad");
+    // A .glb that needs a side buffer too: its first buffer a fallback, no binary chunk.
+    let fallback = json!({ "byteLength": 64, "extensions": { "EXT_meshopt_compression": { "fallback": true } } });
+    let glb = glb_without_binary_chunk(&dir.join("b"), "quad", Some(fallback));
+    let out = dir.join("out");
+    for force in [false, true] {
+        let _ = std::fs::remove_dir_all(&out);
+        let mut args = vec![gltf.as_os_str(), glb.as_os_str(), "--jobs".as_ref(), "1".as_ref()];
+        args.extend(["--out-dir".as_ref(), out.as_os_str()]);
+        if force {
+            args.push("--force".as_ref());
+        }
+        let result = tool::run(args);
+        assert_eq!(result.status.code(), Some(1), "force {force}");
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(
+            stderr.contains("quad.tangents.bin is the side buffer of another input of this run"),
+            "{stderr}"
+        );
+        // The first input's output is whole: its side buffer is its own.
+        assert_eq!(tool::listing(&out), ["quad.gltf", "quad.tangents.bin"], "force {force}");
+        assert_eq!(
+            Doc::open(&out.join("quad.gltf"))
+                .corners(0, 0, 0)
+                .tangents
+                .expect("TANGENT")
+                .len(),
+            6
+        );
+    }
+}

@@ -27,7 +27,7 @@ _OVERLAP = 10
 
 def rows(name: str, array: ArrayLike, width: int) -> NDArray[np.float32]:
     """``array`` as ``(n, width)`` float32 rows the library can read in place."""
-    data = np.asarray(array)
+    data = converted(name, lambda: np.asarray(array))
     if data.dtype.kind not in "fiu":
         raise InvalidDtypeError(f"{name} must hold real numbers (float32 is read in place), not dtype {data.dtype}")
     if data.ndim != 2 or data.shape[1] != width:
@@ -120,7 +120,7 @@ def indices(array: Optional[ArrayLike], vertex_count: int) -> tuple[Optional[NDA
     """
     if array is None:
         return None, ()
-    data = np.asarray(array)
+    data = converted("indices", lambda: np.asarray(array))
     if data.size == 0 and data.dtype.kind == "f":
         data = data.astype(np.uint32)  # numpy reads [] as float64
     if data.dtype.kind not in "iu":
@@ -129,16 +129,16 @@ def indices(array: Optional[ArrayLike], vertex_count: int) -> tuple[Optional[NDA
         )
     if not (data.ndim == 1 or (data.ndim == 2 and data.shape[1] == 3)):
         raise InvalidLayoutError(f"indices must have shape (k,) or (m, 3), not {data.shape}")
-    flat = data.reshape(-1)  # a view where the layout allows one
+    flat = converted("indices", lambda: data.reshape(-1))  # a view where the layout allows one
     if flat.dtype in _INDEX_TYPES:
         if flat.size > 1 and flat.strides[0] < flat.itemsize:
-            flat = np.ascontiguousarray(flat)
+            flat = converted("indices", lambda: np.ascontiguousarray(flat))
         return flat, data.shape
-    outside = np.flatnonzero((flat < 0) | (flat >= _INDEX_END))
-    if outside.size:
-        position = int(outside[0])
+    if np.any((flat < 0) | (flat >= _INDEX_END)):
+        # The first index out of range, as the library would name it.
+        position = int(np.flatnonzero((flat < 0) | (flat >= min(vertex_count, _INDEX_END)))[0])
         value = int(flat[position])
-        if value < 0 or vertex_count <= _INDEX_END:
+        if value < _INDEX_END:
             raise out_of_range(position, value, vertex_count)
         triangle = position // 3
         raise IndexOutOfRangeError(

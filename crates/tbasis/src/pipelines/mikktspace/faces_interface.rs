@@ -103,7 +103,8 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     )?;
 
     // 3. Each slot takes its corner's space, or both corners' average where the two triangles
-    //    of a quad meet, with the orientation of the later group (GenerateTSpaces, AvgTSpace).
+    //    of a quad meet, in the C's write order, with the orientation of the later write
+    //    (GenerateTSpaces, AvgTSpace).
     //    Without quads, slots are corners: those no group reaches keep the initial space and
     //    orientation 0 (the scratch starts zeroed).
     let mut out = if slot_count == corner_count {
