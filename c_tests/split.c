@@ -154,6 +154,23 @@ void test_split_statuses(const test_mesh *m)
                  &out.appended, TBASIS_ERROR_OVERLAP);
     expect_split("split: new_indices are the tangents", &d, tangents, 16, &out, (uint32_t *)tangents, out.sources,
                  &out.appended, TBASIS_ERROR_OVERLAP);
+    expect_split("split: NULL sources", &d, tangents, 16, &out, out.new_indices, NULL, &out.appended,
+                 TBASIS_ERROR_NULL_POINTER);
+    expect_split("split: new_indices over the mesh's indices", &d, tangents, 16, &out, (uint32_t *)indices,
+                 out.sources, &out.appended, TBASIS_ERROR_OVERLAP);
+    expect_split("split: appended_count inside sources", &d, tangents, 16, &out, out.new_indices, out.sources,
+                 (size_t *)(out.sources + 2), TBASIS_ERROR_OVERLAP);
+    /* On success, only the first *appended_count sources are written. */
+    sentinel_fill(&out, sizeof out);
+    if (expect_status("split: sources past the appended count",
+                      tbasis_split_corners(&d, tangents, 16, out.new_indices, out.sources, &out.appended), TBASIS_OK)) {
+        split_outputs fresh;
+        sentinel_fill(&fresh, sizeof fresh);
+        check(out.appended < corners &&
+                  memcmp(out.sources + out.appended, fresh.sources + out.appended,
+                         sizeof out.sources - 4 * out.appended) == 0,
+              "split: a source past the %zu appended was written", out.appended);
+    }
     indices[corners - 1] = (uint16_t)d.vertex_count;
     expect_split("split: index out of range", &d, tangents, 16, &out, out.new_indices, out.sources, &out.appended,
                  TBASIS_ERROR_INDEX_OUT_OF_RANGE);
