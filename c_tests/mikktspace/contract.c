@@ -3,7 +3,8 @@
  * libtbasis_mikktspace (tests/mikktspace_dropin.rs builds and runs it):
  *
  * - a NULL context, a NULL interface or a NULL get callback: 0, and no callback called;
- * - a face count of 0 or less: 0 after m_getNumFaces alone;
+ * - a face count of 0 or less: 0 after m_getNumFaces alone; faces but none of 3 or 4 vertices: 0
+ *   after the counts alone;
  * - the callbacks, in the header's order: m_getNumFaces once, m_getNumVerticesOfFace once per
  *   face, the three get callbacks once per vertex of each face of 3 or 4 vertices, then
  *   m_setTSpace and m_setTSpaceBasic per face vertex; faces of other counts never read;
@@ -292,6 +293,21 @@ static void no_faces(void)
     }
 }
 
+/* Faces, but none of 3 or 4 vertices: 0 with no get callback past the counts and no set call. */
+static void no_usable_face(void)
+{
+    SMikkTSpaceInterface interface = full_interface();
+    static const int sizes[4] = {5, 2, 0, -1};
+    mesh m;
+    long k, reads = 0;
+    init_mesh(&m, 2, 2, sizes, 4, 1);
+    check(generate(&interface, &m) == 0, "no face of 3 or 4 vertices returns 0");
+    for (k = 0; k < m.call_count; k++)
+        reads += m.calls[k].kind != NUM_FACES && m.calls[k].kind != NUM_VERTICES;
+    check(reads == 0, "no face of 3 or 4 vertices: %ld calls past the counts", reads);
+    free(m.calls);
+}
+
 /* Appends the expected call to `expected`. */
 static void expect(call *expected, long *n, int kind, int face, int vert)
 {
@@ -426,6 +442,7 @@ int main(void)
 {
     null_callbacks();
     no_faces();
+    no_usable_face();
     {
         static const int quad_first[8] = {4, 3, 5, -2, 0, 4, 2, 3};
         static const int other_first[8] = {5, 3, -2, 0, 4, 2, 3, 4};
