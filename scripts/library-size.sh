@@ -84,9 +84,9 @@ HEADER
   cat <<'FOOTER'
 
 Stripping the symbol table (`strip = "symbols"`) removes what only debuggers and profilers read
-(the `.symtab` and `.strtab` sections, about 200 KB): the dynamic symbols C programs link against
-stay, and the code is the same (`size -A` gives `.text` sections within 0.1% of each other), so it
-costs no speed, whatever the timings above show of the load. It brings the library under 1 MB
+(the `.symtab` and `.strtab` sections; the first two rows differ by them alone): the dynamic
+symbols C programs link against stay, and the code is the same, so it costs no speed, whatever the
+timings above show of the load. It brings the library under 1 MB
 alone; `cargo build --profile profiling` keeps the symbols (and adds line tables) for profilers.
 One codegen unit and LTO save more but lengthen every release build of the crate and its users'
 builds of the C library, for differences in speed the noise of these timings hides;

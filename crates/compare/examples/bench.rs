@@ -1048,7 +1048,7 @@ fn main() {
 
     let mut md = String::from(
         "# Benchmark\n\n\
-         Reproduce (about 3 to 4 minutes on 2 cores; prints the tables and writes this file):\n\n",
+         Reproduce (a few minutes on 2 cores, this run's time below; prints the tables and writes this file):\n\n",
     );
     writeln!(md, "```text\n{COMMAND}\n```\n").unwrap();
     writeln!(

@@ -1145,7 +1145,7 @@ fn main() {
          listing.c (`c_tests/listing.c`, the listing in C, built with -ffp-contract=off), meshopt \
          0.7.0 (meshoptimizer 1.3, `meshopt_generateTangents`, default and MikkTSpace-compatible), \
          mikktspace-sys 0.1.1 (mikktspace.c) and bevy_mikktspace 1.0.0.\n\n\
-         Reproduce (about 5 minutes on 2 cores; writes docs/chart.csv, docs/chart.svg, docs/chart.md):\n\n\
+         Reproduce (a few minutes on 2 cores, this run's time below; writes docs/chart.csv, docs/chart.svg, docs/chart.md):\n\n\
          ```text\ncargo run --release -p tbasis-compare --example chart\n```\n\n",
     );
     writeln!(

@@ -165,12 +165,12 @@ cargo run --release -p tbasis-compare --example corpus_table
 
 Every mesh of the shared corpus (`../shared/meshes/`, see its `MANIFEST.tsv` and `README.md`),
 run through `tbasis::generate` with each degenerate policy and the default threshold.
-`flip_v` is set for glTF files (V stored downward) and not for OBJ; the counts do not depend on it.
+`flip_v` is set for glTF files (V stored downward) and not for OBJ.
 One row per file and policy, summed over the file's primitives (glTF mesh primitives, OBJ models;
 OBJ corners with distinct v/vt/vn tuples are distinct vertices).
 
 - **status**: `ok` when every primitive succeeded, else each error with the number of primitives
-  it ended (`DegenerateUv`: REJECT refused the primitive; `NullPointer`: LEGACY needs texture
+  it ended (`DegenerateUv`: REJECT refused the primitive; `MissingTexcoords`: LEGACY needs texture
   coordinates and the primitive has no TEXCOORD_0).
 - **degenerate_triangles** .. **unreferenced_vertices**: the `Report` fields. A refused or failed
   primitive contributes what its report holds: REJECT's refusal reports the degenerate, mirrored and

@@ -224,6 +224,71 @@ fn the_normal_texture_chooses_the_texture_coordinates() {
     let after = Doc::open(&output);
     let tangents = after.corners(0, 0, 1).tangents.unwrap();
     assert!(tangents.iter().all(|t| *t == [1.0, 0.0, 0.0, -1.0]), "{tangents:?}");
+
+    // KHR_texture_transform's texCoord overrides the texture's: set 1 again, though it says 0.
+    f.json["materials"][0]["normalTexture"] = json!({
+        "index": 0, "texCoord": 0, "extensions": { "KHR_texture_transform": { "texCoord": 1 } }
+    });
+    f.json["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    let input = f.write_glb(&dir, "transformed");
+    let result = tool::run([
+        input.as_os_str(),
+        "-o".as_ref(),
+        dir.join("transformed-out.glb").as_os_str(),
+    ]);
+    assert!(String::from_utf8_lossy(&result.stdout).contains("1 primitive done, 0 vertices added"));
+}
+
+#[test]
+fn a_vertex_no_triangle_uses_gets_a_tangent_from_its_normal() {
+    let dir = tool::fresh_dir("unused-vertex");
+    let mut f = Fixture::mirrored_quad();
+    // A fifth vertex, used by no triangle, with a tilted normal.
+    let position = f.floats(
+        &[
+            [0.0f32, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [5.0, 5.0, 5.0],
+        ],
+        "VEC3",
+        true,
+    );
+    let normal = f.floats(
+        &[
+            [0.0f32, 0.0, 1.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.6, 0.8],
+        ],
+        "VEC3",
+        false,
+    );
+    let texcoord = f.floats(
+        &[[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [2.0, 0.0], [0.0, 0.0]],
+        "VEC2",
+        false,
+    );
+    f.primitive(0)["attributes"] = json!({ "POSITION": position, "NORMAL": normal, "TEXCOORD_0": texcoord });
+    let input = f.write_glb(&dir, "quad");
+    let output = dir.join("out.glb");
+    assert!(tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()])
+        .status
+        .success());
+    let after = Doc::open(&output);
+    let tangent = after.attribute(0, 0, "TANGENT").expect("TANGENT");
+    let element = &after.elements(tangent)[4];
+    let [x, y, z, w] = std::array::from_fn(|k| f32::from_le_bytes(element[4 * k..4 * k + 4].try_into().unwrap()));
+    assert!(
+        ((x * x + y * y + z * z).sqrt() - 1.0).abs() < 1e-5 && w.abs() == 1.0,
+        "{x} {y} {z} {w}"
+    );
+    assert!(
+        (0.6 * y + 0.8 * z).abs() < 1e-5,
+        "orthogonal to the normal: {x} {y} {z}"
+    );
 }
 
 #[test]
