@@ -758,3 +758,35 @@ fn two_inputs_of_one_run_never_write_one_side_buffer() {
         );
     }
 }
+
+#[test]
+fn indices_stay_16_bit_up_to_65535_vertices() {
+    let dir = tool::fresh_dir("index-width");
+    // The mirrored quad (its split adds 2 vertices) among vertices no triangle uses.
+    for (vertices, width) in [(65_533usize, 5123), (65_534, 5125)] {
+        let mut f = Fixture::mirrored_quad();
+        let corners = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let positions: Vec<[f32; 3]> = (0..vertices).map(|v| corners[v.min(3)]).collect();
+        let normals = vec![[0.0f32, 0.0, 1.0]; vertices];
+        let uvs = [[0.0f32, 0.0], [1.0, 0.0], [1.0, 1.0], [2.0, 0.0]];
+        let texcoords: Vec<[f32; 2]> = (0..vertices).map(|v| uvs[v.min(3)]).collect();
+        let attributes = json!({
+            "POSITION": f.floats(&positions, "VEC3", true),
+            "NORMAL": f.floats(&normals, "VEC3", false),
+            "TEXCOORD_0": f.floats(&texcoords, "VEC2", false),
+        });
+        f.primitive(0)["attributes"] = attributes;
+        let input = f.write_glb(&dir, &format!("v{vertices}"));
+        let output = dir.join(format!("v{vertices}-out.glb"));
+        let result = tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()]);
+        assert!(String::from_utf8_lossy(&result.stdout).contains("2 vertices added"));
+        let after = Doc::open(&output);
+        let indices = after.primitive_json(0, 0)["indices"].as_u64().unwrap() as usize;
+        assert_eq!(
+            after.json["accessors"][indices]["componentType"],
+            width,
+            "{} vertices",
+            vertices + 2
+        );
+    }
+}
