@@ -6,6 +6,7 @@ import os
 import sys
 import threading
 import time
+from typing import Any
 
 import numpy as np
 import pytest
@@ -20,12 +21,13 @@ def big() -> Mesh:
     return torus(nu=600, nv=300, jitter=0.001, random_diagonals=True)  # 180,901 vertices
 
 
-def test_python_runs_while_the_library_computes(big: Mesh) -> None:
+@pytest.mark.parametrize("call", [tbasis.generate_corners, tbasis.generate])
+def test_python_runs_while_the_library_computes(big: Mesh, call: Any) -> None:
     window: list[float] = []
 
     def compute() -> None:
         window.append(time.perf_counter())
-        tbasis.generate_corners(big.positions, big.normals, big.uvs, big.indices, method="mikktspace")
+        call(big.positions, big.normals, big.uvs, big.indices, method="mikktspace")
         window.append(time.perf_counter())
 
     worker = threading.Thread(target=compute)
