@@ -125,3 +125,28 @@ fn repairs_keep_every_nearly_valid_mikktspace_tangent() {
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Policy REJECT's test decides what is degenerate for every method. A triangle whose positions
+/// are so small that mikktspace.c's derivatives underflow (it cannot use it), while REJECT's test
+/// with threshold 0 passes it, leaves a successful call's report with no degenerate triangle.
+#[test]
+fn reject_that_succeeds_reports_no_degenerate_triangle() {
+    let bits = |b: [u32; 3]| b.map(f32::from_bits);
+    let positions = [bits([0xbe00; 3]), [0.0; 3], bits([0xbe, 0x0200_00be, 0xc1])];
+    let normals = [[0.0f32; 3], [-0.125, -0.125, -8.125], [0.0, -0.125, -0.125]];
+    let texcoords = [[-6.5f32, -8.0], [0.0, 0.0], [0.0, 1.0]];
+    let indices = [0u32, 1, 2];
+    let mesh = tbasis::Mesh::new(&positions, &normals)
+        .with_texcoords(&texcoords)
+        .with_indices(&indices[..]);
+    let options = tbasis::Options::mikktspace()
+        .with_policy(tbasis::DegeneratePolicy::Reject)
+        .with_degenerate_threshold(0.0);
+    let mut corners = [[0.0f32; 4]; 3];
+    let report = tbasis::generate_corners(&mesh, &options, &mut tbasis::StridedMut::from_slice(&mut corners))
+        .expect("REJECT's test passes the triangle");
+    assert_eq!(
+        (report.degenerate_triangles, report.first_degenerate_triangle),
+        (0, None)
+    );
+}
