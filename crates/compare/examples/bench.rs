@@ -4,6 +4,7 @@
 //! ```text
 //! cargo run --release -p tbasis-compare --example bench [-- [--quick] [FILTER]]
 //! cargo run --release -p tbasis-compare --example bench -- --calls COUNT CONFIGURATION [FILTER]
+//! cargo run --release -p tbasis-compare --example bench -- --parts ROUNDS CONFIGURATION...
 //! ```
 //!
 //! Scenes: the irregular torus of `docs/chart.md` at about 1M vertices (`crates/test-support/src/scenes.rs`),
@@ -19,6 +20,8 @@
 //! instead, to check the output in about a minute; its figures are not worth quoting. `--calls`
 //! times one configuration (named as in the tables) `COUNT` times in a row in one process and
 //! prints every call's time, to show how the times of one configuration move ([`consecutive_calls`]).
+//! `--parts` times configurations on each primitive of the asset apart ([`per_primitive`]), to show
+//! which primitives a scene's time comes from.
 //!
 //! Every configuration runs on the same buffers, interleaved round by round so that a drift in the
 //! machine's speed touches them all alike; each time is the median over the rounds. Besides
@@ -111,6 +114,12 @@ const QUICK_FLAG: &str = "--quick";
 
 /// The flag of a run of consecutive calls of one configuration ([`consecutive_calls`]).
 const CALLS_FLAG: &str = "--calls";
+
+/// The flag of a run per primitive of the asset ([`per_primitive`]).
+const PARTS_FLAG: &str = "--parts";
+
+/// A mode that prints its own output, from the arguments after its flag.
+type Mode = fn(&[String]) -> Result<(), String>;
 
 /// One array the library reads: a primitive of the asset, or the whole of a generated scene.
 struct Part {
@@ -745,14 +754,7 @@ fn consecutive_calls(args: &[String]) -> Result<(), String> {
         return Err(usage());
     };
     let configs = configs();
-    let Some(config) = configs.iter().find(|c| c.name == *name) else {
-        let names: Vec<&str> = configs.iter().map(|c| c.name.as_str()).collect();
-        return Err(format!(
-            "{}\nno configuration {name:?}; they are: {}",
-            usage(),
-            names.join("; ")
-        ));
-    };
+    let config = named(&configs, name, &usage())?;
     let filter = args.get(2);
     println!("{}; load average {}", machine(), load_average());
     let builders: [(&str, SceneBuilder); 2] = [("torus", || Ok(torus())), ("asset", asset)];
@@ -779,6 +781,89 @@ fn consecutive_calls(args: &[String]) -> Result<(), String> {
         sorted.sort_by(f64::total_cmp);
         let [low, q1, median, q3, high] = [0.0, 0.25, 0.5, 0.75, 1.0].map(|q| quantile(&sorted, q));
         println!("fastest {low:.1}, quartiles {q1:.1} / {median:.1} / {q3:.1}, slowest {high:.1}");
+    }
+    Ok(())
+}
+
+/// The configuration the tables call `name`, or `usage` and the names there are.
+fn named<'c>(configs: &'c [Config], name: &str, usage: &str) -> Result<&'c Config, String> {
+    configs.iter().find(|c| c.name == name).ok_or_else(|| {
+        let names: Vec<&str> = configs.iter().map(|c| c.name.as_str()).collect();
+        format!("{usage}\nno configuration {name:?}; they are: {}", names.join("; "))
+    })
+}
+
+/// `--parts ROUNDS CONFIGURATION...`: the configurations the tables name on each primitive of the
+/// asset, each primitive its own scene: `ROUNDS` rounds after an untimed one, every configuration
+/// and primitive once per round, interleaved as in the tables. Prints a Markdown table of median
+/// ns/vertex per primitive, with each configuration's time over the first's. Writes nothing.
+fn per_primitive(args: &[String]) -> Result<(), String> {
+    let usage = || format!("usage: bench {PARTS_FLAG} ROUNDS CONFIGURATION...");
+    let Some(rounds) = args.first().and_then(|n| n.parse::<usize>().ok()).filter(|&n| n > 0) else {
+        return Err(usage());
+    };
+    let all = configs();
+    let chosen = args[1..]
+        .iter()
+        .map(|name| named(&all, name, &usage()))
+        .collect::<Result<Vec<_>, _>>()?;
+    if chosen.is_empty() {
+        return Err(usage());
+    }
+    let asset = asset().map_err(|why| format!("asset: {why}"))?;
+    println!("{}; load average {}", machine(), load_average());
+    println!("\n{}", asset.title());
+    let scenes: Vec<Scene> = asset
+        .parts
+        .into_iter()
+        .map(|part| Scene {
+            name: asset.name.clone(),
+            short: asset.short.clone(),
+            parts: vec![part],
+            small: false,
+        })
+        .collect();
+    let mut outputs: Vec<Outputs> = scenes.iter().map(Outputs::of).collect();
+    // samples[primitive][configuration]
+    let mut samples = vec![vec![Vec::new(); chosen.len()]; scenes.len()];
+    for round in 0..=rounds {
+        for (p, (scene, outputs)) in scenes.iter().zip(outputs.iter_mut()).enumerate() {
+            for (k, config) in chosen.iter().enumerate() {
+                let time = run(config.generator, scene, outputs, 1).0;
+                if round > 0 {
+                    samples[p][k].push(ns(time) / scene.vertices() as f64);
+                }
+            }
+        }
+    }
+    let mut header = "| primitive | vertices | corners |".to_string();
+    let mut rule = "|---:|---:|---:|".to_string();
+    for config in &chosen {
+        write!(header, " {} ns/vertex |", config.name).unwrap();
+        rule.push_str("---:|");
+    }
+    for config in &chosen[1..] {
+        write!(header, " {} / {} |", config.name, chosen[0].name).unwrap();
+        rule.push_str("---:|");
+    }
+    println!("\n{rounds} rounds, median ns/vertex per primitive:\n\n{header}\n{rule}");
+    for (p, (scene, samples)) in scenes.iter().zip(&mut samples).enumerate() {
+        let medians: Vec<f64> = samples
+            .iter_mut()
+            .map(|times| {
+                times.sort_by(f64::total_cmp);
+                quantile(times, 0.5)
+            })
+            .collect();
+        let part = &scene.parts[0];
+        let mut row = format!("| {p} | {} | {} |", part.vertices(), part.corners());
+        for median in &medians {
+            write!(row, " {median:.1} |").unwrap();
+        }
+        for median in &medians[1..] {
+            write!(row, " {:.2}x |", median / medians[0]).unwrap();
+        }
+        println!("{row}");
     }
     Ok(())
 }
@@ -939,8 +1024,13 @@ impl Bandwidth {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.first().is_some_and(|a| a == CALLS_FLAG) {
-        if let Err(why) = consecutive_calls(&args[1..]) {
+    let mode: Option<Mode> = match args.first().map(String::as_str) {
+        Some(CALLS_FLAG) => Some(consecutive_calls),
+        Some(PARTS_FLAG) => Some(per_primitive),
+        _ => None,
+    };
+    if let Some(mode) = mode {
+        if let Err(why) = mode(&args[1..]) {
             eprintln!("{why}");
             std::process::exit(2);
         }
@@ -949,7 +1039,10 @@ fn main() {
     let quick = args.iter().any(|a| a == QUICK_FLAG);
     let filter = args.iter().find(|a| *a != QUICK_FLAG).cloned();
     if args.len() > usize::from(quick) + 1 || filter.as_deref().is_some_and(|f| f.starts_with('-')) {
-        eprintln!("usage: bench [{QUICK_FLAG}] [FILTER] | {CALLS_FLAG} COUNT CONFIGURATION [FILTER]");
+        eprintln!(
+            "usage: bench [{QUICK_FLAG}] [FILTER] | {CALLS_FLAG} COUNT CONFIGURATION [FILTER] | {PARTS_FLAG} ROUNDS \
+             CONFIGURATION..."
+        );
         std::process::exit(2);
     }
     // A quick run checks the output: it leaves the record in docs/ alone.
