@@ -8,7 +8,8 @@
 //!
 //! The tests compare the package with this crate's C library (a release build), whose path they
 //! get in `TBASIS_REFERENCE_LIBRARY`. Everything the virtual environment holds comes from the
-//! package index (PyPI). Without python3 and its venv and pip modules the test is skipped, except
+//! package index (PyPI), at the versions `bindings/python/test-constraints.txt` pins, in the build
+//! environments too. Without python3 and its venv and pip modules the test is skipped, except
 //! under CI, where it fails (`tbasis_test_support::needs`).
 
 mod common;
@@ -60,7 +61,7 @@ fn python_package_builds_installs_and_passes_its_tests() {
         .arg(&package)
         .env("CARGO_TARGET_DIR", work.join("target"))
         .env("MATURIN_PEP517_ARGS", "--features fault-injection");
-    run_ok(clean(build), "pip wheel bindings/python");
+    run_ok(clean(pinned(build)), "pip wheel bindings/python");
     let wheel = only_file(&wheels, ".whl");
     let name = wheel.file_name().unwrap().to_string_lossy().into_owned();
     assert!(
@@ -71,6 +72,7 @@ fn python_package_builds_installs_and_passes_its_tests() {
     let mut tools = vec!["install", "maturin"];
     tools.extend(TEST_TOOLS);
     pip(&python, &tools);
+    every_package_is_pinned(&python);
 
     // Outside the repository, so that `import tbasis` can only find the installed package.
     let outside = fresh_dir(&work.join("run"));
@@ -134,7 +136,7 @@ fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, o
         .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
         .arg(&archive)
         .env("CARGO_TARGET_DIR", work.join("target"));
-    run_ok(clean(install), "pip install of the source distribution");
+    run_ok(clean(pinned(install)), "pip install of the source distribution");
     let mut example = Command::new(&sdist_python);
     example
         .arg(package.join("examples/interleaved.py"))
@@ -169,13 +171,64 @@ fn clean(mut command: Command) -> Command {
     command
 }
 
-/// `python -m pip --quiet ARGS`.
+/// `python -m pip --quiet ARGS`, pinned.
 fn pip(python: &Path, args: &[&str]) {
     let mut command = Command::new(python);
     command
         .args(["-m", "pip", "--quiet", "--disable-pip-version-check"])
         .args(args);
-    run_ok(clean(command), &format!("pip {}", args.join(" ")));
+    run_ok(clean(pinned(command)), &format!("pip {}", args.join(" ")));
+}
+
+/// `command` (a pip command) held to the versions of `bindings/python/test-constraints.txt`, in
+/// the isolated environments where it builds packages too. Not for `python3 -m venv`: its pip
+/// comes from the interpreter, whatever its version.
+fn pinned(mut command: Command) -> Command {
+    command.env(
+        "PIP_CONSTRAINT",
+        Path::new(CRATE_DIR).join("bindings/python/test-constraints.txt"),
+    );
+    command
+}
+
+/// Every package `python`'s environment holds from PyPI is at the version
+/// `bindings/python/test-constraints.txt` pins: a new dependency of a pinned one must be pinned
+/// too. The package itself and what `python3 -m venv` put there (setuptools, on some Pythons) are
+/// not from PyPI.
+fn every_package_is_pinned(python: &Path) {
+    let constraints = std::fs::read_to_string(Path::new(CRATE_DIR).join("bindings/python/test-constraints.txt"))
+        .expect("bindings/python/test-constraints.txt");
+    // pip compares names normalized: case, `-`, `_` and `.` aside.
+    let normal = |name: &str| name.to_ascii_lowercase().replace(['-', '.'], "_");
+    let pins: Vec<(String, &str)> = constraints
+        .lines()
+        .filter(|line| !line.starts_with('#') && !line.trim().is_empty())
+        .map(|line| {
+            let (name, version) = line.split_once("==").expect("name==version");
+            (normal(name), version.trim())
+        })
+        .collect();
+    let mut list = Command::new(python);
+    list.args(["-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"]);
+    let output = run_ok(clean(list), "pip list");
+    let installed = String::from_utf8_lossy(&output.stdout).into_owned();
+    let mut unpinned = Vec::new();
+    for line in installed.lines() {
+        let (name, version) = line.split_once("==").unwrap_or((line, ""));
+        if ["tbasis", "setuptools"].contains(&normal(name).as_str()) {
+            continue;
+        }
+        if !pins
+            .iter()
+            .any(|(pin, pinned)| *pin == normal(name) && *pinned == version)
+        {
+            unpinned.push(line.to_string());
+        }
+    }
+    assert!(
+        unpinned.is_empty(),
+        "installed at a version bindings/python/test-constraints.txt does not pin: {unpinned:?}"
+    );
 }
 
 /// The interpreter of a virtual environment.
