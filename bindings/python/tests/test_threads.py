@@ -1,4 +1,4 @@
-"""The GIL is released while the library runs, and ``threads`` reaches it."""
+"""The GIL is released while the library runs (every call that computes), and ``threads`` reaches it."""
 
 from __future__ import annotations
 
@@ -6,10 +6,11 @@ import os
 import sys
 import threading
 import time
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 import pytest
+from numpy.typing import NDArray
 
 import tbasis
 from meshes import Mesh, torus
@@ -21,13 +22,49 @@ def big() -> Mesh:
     return torus(nu=600, nv=300, jitter=0.001, random_diagonals=True)  # 180,901 vertices
 
 
-@pytest.mark.parametrize("call", [tbasis.generate_corners, tbasis.generate])
-def test_python_runs_while_the_library_computes(big: Mesh, call: Any) -> None:
+@pytest.fixture(scope="module")
+def frames(big: Mesh) -> tuple[NDArray[np.float32], NDArray[np.float32], NDArray[np.float32]]:
+    """Normals, MikkTSpace tangents and unit directions, one per corner of ``big`` repeated: long
+    enough that a transform's call can be told from its argument checks."""
+    corners = big.indices.ravel()
+    tangents = tbasis.generate_corners(big.positions, big.normals, big.uvs, big.indices, method="mikktspace")
+    normals = np.tile(big.normals[corners], (4, 1))
+    directions = np.tile(np.array([0.48, 0.6, 0.64], dtype=np.float32), (len(normals), 1))
+    return normals, np.tile(tangents, (4, 1)), directions
+
+
+def _generate(call: Any) -> Callable[[Mesh, Any], object]:
+    return lambda big, frames: call(big.positions, big.normals, big.uvs, big.indices, method="mikktspace")
+
+
+def _split(big: Mesh, frames: Any) -> object:
+    # Every corner a tangent of its own (their positions as x): the largest split.
+    tangents = np.zeros((big.indices.size, 4), dtype=np.float32)
+    tangents[:, 0] = np.arange(big.indices.size, dtype=np.float32)
+    return tbasis.split_corners(big.indices, len(big.positions), tangents)
+
+
+def _transform(call: Any) -> Callable[[Mesh, Any], object]:
+    return lambda big, frames: call(*frames, out=frames[2].copy())
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        _generate(tbasis.generate_corners),
+        _generate(tbasis.generate),
+        _split,
+        _transform(tbasis.to_tangent_space),
+        _transform(tbasis.from_tangent_space),
+    ],
+    ids=["generate_corners", "generate", "split_corners", "to_tangent_space", "from_tangent_space"],
+)
+def test_python_runs_while_the_library_computes(big: Mesh, frames: Any, call: Any) -> None:
     window: list[float] = []
 
     def compute() -> None:
         window.append(time.perf_counter())
-        call(big.positions, big.normals, big.uvs, big.indices, method="mikktspace")
+        call(big, frames)
         window.append(time.perf_counter())
 
     worker = threading.Thread(target=compute)
