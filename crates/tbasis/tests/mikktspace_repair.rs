@@ -150,3 +150,62 @@ fn reject_that_succeeds_reports_no_degenerate_triangle() {
         (0, None)
     );
 }
+
+/// With method MIKKTSPACE the report counts the triangles mikktspace.c cannot use: two corners at
+/// one position (its degenerate triangles) or no texture derivatives (zero UV area: it groups them
+/// with any neighbour), under every policy that succeeds; REJECT refuses the mesh. The listing
+/// (LENGYEL with LEGACY) counts the zero UV determinant alone on the same mesh.
+#[test]
+fn mikktspace_counts_the_triangles_mikktspace_c_cannot_use() {
+    // A strip of four triangles: 0 and 3 ordinary, 1 with two corners at one position (its UVs
+    // apart), 2 with its three UVs on one line.
+    let positions = [
+        [0.0f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [2.0, 1.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [3.0, 0.0, 0.0],
+    ];
+    let normals = [[0.0f32, 0.0, 1.0]; 8];
+    let texcoords = [
+        [0.0f32, 0.0],
+        [1.0, 0.0],
+        [0.0, 1.0],
+        [1.0, 1.0],
+        [0.5, 0.7],
+        [2.0, 1.0],
+        [3.0, 2.0],
+        [4.0, 0.0],
+    ];
+    let indices = [0u32, 1, 2, 1, 3, 4, 1, 5, 6, 6, 7, 5];
+    let mesh = tbasis::Mesh::new(&positions, &normals)
+        .with_texcoords(&texcoords)
+        .with_indices(&indices[..]);
+    let mut corners = [[0.0f32; 4]; 12];
+    let mut run = |options: Options| generate_corners(&mesh, &options, &mut StridedMut::from_slice(&mut corners));
+    for policy in [
+        DegeneratePolicy::Legacy,
+        DegeneratePolicy::Skip,
+        DegeneratePolicy::Inherit,
+    ] {
+        let report = run(Options::mikktspace().with_policy(policy)).unwrap_or_else(|e| panic!("{policy:?}: {e}"));
+        assert_eq!(
+            (report.degenerate_triangles, report.first_degenerate_triangle),
+            (2, Some(1)),
+            "{policy:?}"
+        );
+    }
+    let refused = run(Options::mikktspace().with_policy(DegeneratePolicy::Reject));
+    assert!(
+        matches!(refused, Err(tbasis::Error::DegenerateUv { triangle: 1, .. })),
+        "{refused:?}"
+    );
+    let listing = run(Options::legacy()).expect("the listing takes any mesh");
+    assert_eq!(
+        (listing.degenerate_triangles, listing.first_degenerate_triangle),
+        (1, Some(2))
+    );
+}
