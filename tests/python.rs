@@ -4,7 +4,8 @@
 //! import the installed package, never the source tree: pytest (`bindings/python/tests/`), then
 //! `mypy --strict` on the tests, the examples and the package's own sources. maturin also builds
 //! the source distribution, which pip installs into another fresh virtual environment, where the
-//! package's example runs.
+//! package's example runs. Last, pytest runs again in a third one, on the oldest numpy with wheels
+//! for the running Python: numpy 1 as well as 2.
 //!
 //! The tests compare the package with this crate's C library (a release build), whose path they
 //! get in `TBASIS_REFERENCE_LIBRARY`. Everything the virtual environment holds comes from the
@@ -41,14 +42,8 @@ fn python_package_builds_installs_and_passes_its_tests() {
     ));
     assert!(reference.is_file(), "{} was not built", reference.display());
 
-    let venv = fresh_dir(&work.join("venv"));
-    let mut create = Command::new("python3");
-    create.args(["-m", "venv"]).arg(&venv);
-    run_ok(clean(create), "python3 -m venv");
-    let python = venv_python(&venv);
-    // An old pip builds a copy of the source tree elsewhere, where the path dependency on this
-    // crate does not resolve; a current one builds in place.
-    pip(&python, &["install", "--upgrade", "pip"]);
+    let pins = Constraints::of_the_package();
+    let python = fresh_venv(&work.join("venv"), &pins);
 
     // The wheel, built as `pip install ./bindings/python` builds it, into the target dir rather
     // than the source tree, with the test-only feature `fault-injection` (maturin's PEP 517
@@ -61,30 +56,23 @@ fn python_package_builds_installs_and_passes_its_tests() {
         .arg(&package)
         .env("CARGO_TARGET_DIR", work.join("target"))
         .env("MATURIN_PEP517_ARGS", "--features fault-injection");
-    run_ok(clean(pinned(build)), "pip wheel bindings/python");
+    run_ok(clean(pins.applied(build)), "pip wheel bindings/python");
     let wheel = only_file(&wheels, ".whl");
     let name = wheel.file_name().unwrap().to_string_lossy().into_owned();
     assert!(
         name.starts_with("tbasis-") && name.contains("-cp39-abi3-"),
         "{name}: not one abi3 wheel for CPython 3.9 and later"
     );
-    pip(&python, &["install", &format!("{}[gltf]", wheel.display())]);
+    let with_extra = format!("{}[gltf]", wheel.display());
+    pip(&python, &pins, &["install", &with_extra]);
     let mut tools = vec!["install", "maturin"];
     tools.extend(TEST_TOOLS);
-    pip(&python, &tools);
-    every_package_is_pinned(&python);
+    pip(&python, &pins, &tools);
+    pins.hold_every_package(&python);
 
     // Outside the repository, so that `import tbasis` can only find the installed package.
     let outside = fresh_dir(&work.join("run"));
-    let mut pytest = Command::new(&python);
-    pytest
-        .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
-        .arg(package.join("tests"))
-        .current_dir(&outside)
-        .env("TBASIS_REFERENCE_LIBRARY", &reference)
-        // No bytecode written into the source tree.
-        .env("PYTHONDONTWRITEBYTECODE", "1");
-    run_ok(clean(pytest), "pytest bindings/python/tests");
+    pytest(&python, &package, &outside, &reference);
 
     let mut mypy = Command::new(&python);
     mypy.args(["-m", "mypy", "--strict", "--config-file"])
@@ -106,6 +94,64 @@ fn python_package_builds_installs_and_passes_its_tests() {
     run_ok(clean(sources), "mypy --strict on the package's sources");
 
     install_the_source_distribution(&python, &package, &work, &outside);
+
+    // numpy 1 as well as 2: the package's tests on the oldest numpy this Python can install.
+    match oldest_numpy() {
+        Some(oldest) => {
+            let pins = pins.with("numpy", oldest, &work);
+            let python = fresh_venv(&work.join("oldest-numpy-venv"), &pins);
+            pip(&python, &pins, &["install", &with_extra, "pytest"]);
+            pins.hold_every_package(&python);
+            pytest(&python, &package, &outside, &reference);
+        }
+        // Under CI, as for a missing tool (`needs`), a check left out is a failure.
+        None if std::env::var_os("CI").is_some() => panic!("the oldest numpy for this Python is not known"),
+        None => eprintln!("skipped: the tests on the oldest numpy, not known for this Python"),
+    }
+}
+
+/// The oldest numpy release with wheels for the Python `python3` runs (the package accepts numpy
+/// 1.21 on); `None` for a Python it does not name.
+fn oldest_numpy() -> Option<&'static str> {
+    let mut version = Command::new("python3");
+    version.args(["-c", "import sys; print(sys.version_info[1])"]);
+    let minor = String::from_utf8_lossy(&run_ok(clean(version), "python3 version").stdout)
+        .trim()
+        .to_string();
+    match minor.as_str() {
+        "9" | "10" => Some("1.21.6"),
+        "11" => Some("1.23.2"),
+        "12" => Some("1.26.0"),
+        "13" => Some("2.1.0"),
+        _ => None,
+    }
+}
+
+/// `pytest bindings/python/tests` with `python`, from `outside` (not the repository, so that
+/// `import tbasis` finds the installed package alone), comparing with the C library `reference`.
+fn pytest(python: &Path, package: &Path, outside: &Path, reference: &Path) {
+    let mut pytest = Command::new(python);
+    pytest
+        .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
+        .arg(package.join("tests"))
+        .current_dir(outside)
+        .env("TBASIS_REFERENCE_LIBRARY", reference)
+        // No bytecode written into the source tree.
+        .env("PYTHONDONTWRITEBYTECODE", "1");
+    run_ok(clean(pytest), "pytest bindings/python/tests");
+}
+
+/// A fresh virtual environment in `dir`, with pip at its pinned version; its interpreter.
+fn fresh_venv(dir: &Path, pins: &Constraints) -> PathBuf {
+    let venv = fresh_dir(dir);
+    let mut create = Command::new("python3");
+    create.args(["-m", "venv"]).arg(&venv);
+    run_ok(clean(create), "python3 -m venv");
+    let python = venv_python(&venv);
+    // An old pip builds a copy of the source tree elsewhere, where the path dependency on this
+    // crate does not resolve; a current one builds in place.
+    pip(&python, pins, &["install", "--upgrade", "pip"]);
+    python
 }
 
 /// Builds the source distribution with maturin (from `python`'s virtual environment), checks that
@@ -113,6 +159,7 @@ fn python_package_builds_installs_and_passes_its_tests() {
 /// environment, and runs the package's example there. Its build shares the wheel's target dir, so
 /// that only the package's own crates are compiled again.
 fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, outside: &Path) {
+    let pins = Constraints::of_the_package();
     let sdists = fresh_dir(&work.join("sdists"));
     let mut sdist = Command::new(python);
     sdist
@@ -125,18 +172,13 @@ fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, o
     contents.args(["-c", SDIST_CONTENTS]).arg(&archive);
     run_ok(clean(contents), "the source distribution's contents");
 
-    let venv = fresh_dir(&work.join("sdist-venv"));
-    let mut create = Command::new("python3");
-    create.args(["-m", "venv"]).arg(&venv);
-    run_ok(clean(create), "python3 -m venv");
-    let sdist_python = venv_python(&venv);
-    pip(&sdist_python, &["install", "--upgrade", "pip"]);
+    let sdist_python = fresh_venv(&work.join("sdist-venv"), &pins);
     let mut install = Command::new(&sdist_python);
     install
         .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
         .arg(&archive)
         .env("CARGO_TARGET_DIR", work.join("target"));
-    run_ok(clean(pinned(install)), "pip install of the source distribution");
+    run_ok(clean(pins.applied(install)), "pip install of the source distribution");
     let mut example = Command::new(&sdist_python);
     example
         .arg(package.join("examples/interleaved.py"))
@@ -171,64 +213,91 @@ fn clean(mut command: Command) -> Command {
     command
 }
 
-/// `python -m pip --quiet ARGS`, pinned.
-fn pip(python: &Path, args: &[&str]) {
+/// `python -m pip --quiet ARGS`, held to `pins`.
+fn pip(python: &Path, pins: &Constraints, args: &[&str]) {
     let mut command = Command::new(python);
     command
         .args(["-m", "pip", "--quiet", "--disable-pip-version-check"])
         .args(args);
-    run_ok(clean(pinned(command)), &format!("pip {}", args.join(" ")));
+    run_ok(clean(pins.applied(command)), &format!("pip {}", args.join(" ")));
 }
 
-/// `command` (a pip command) held to the versions of `bindings/python/test-constraints.txt`, in
-/// the isolated environments where it builds packages too. Not for `python3 -m venv`: its pip
-/// comes from the interpreter, whatever its version.
-fn pinned(mut command: Command) -> Command {
-    command.env(
-        "PIP_CONSTRAINT",
-        Path::new(CRATE_DIR).join("bindings/python/test-constraints.txt"),
-    );
-    command
+/// Exact versions for pip: `bindings/python/test-constraints.txt`, or that with one changed.
+struct Constraints {
+    /// The file pip reads.
+    path: PathBuf,
+    /// `(name, version)`, names normalized ([`normal`]).
+    pins: Vec<(String, String)>,
 }
 
-/// Every package `python`'s environment holds from PyPI is at the version
-/// `bindings/python/test-constraints.txt` pins: a new dependency of a pinned one must be pinned
-/// too. The package itself and what `python3 -m venv` put there (setuptools, on some Pythons) are
-/// not from PyPI.
-fn every_package_is_pinned(python: &Path) {
-    let constraints = std::fs::read_to_string(Path::new(CRATE_DIR).join("bindings/python/test-constraints.txt"))
-        .expect("bindings/python/test-constraints.txt");
-    // pip compares names normalized: case, `-`, `_` and `.` aside.
-    let normal = |name: &str| name.to_ascii_lowercase().replace(['-', '.'], "_");
-    let pins: Vec<(String, &str)> = constraints
-        .lines()
-        .filter(|line| !line.starts_with('#') && !line.trim().is_empty())
-        .map(|line| {
-            let (name, version) = line.split_once("==").expect("name==version");
-            (normal(name), version.trim())
-        })
-        .collect();
-    let mut list = Command::new(python);
-    list.args(["-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"]);
-    let output = run_ok(clean(list), "pip list");
-    let installed = String::from_utf8_lossy(&output.stdout).into_owned();
-    let mut unpinned = Vec::new();
-    for line in installed.lines() {
-        let (name, version) = line.split_once("==").unwrap_or((line, ""));
-        if ["tbasis", "setuptools"].contains(&normal(name).as_str()) {
-            continue;
-        }
-        if !pins
-            .iter()
-            .any(|(pin, pinned)| *pin == normal(name) && *pinned == version)
-        {
-            unpinned.push(line.to_string());
-        }
+impl Constraints {
+    fn of_the_package() -> Self {
+        let path = Path::new(CRATE_DIR).join("bindings/python/test-constraints.txt");
+        let text = std::fs::read_to_string(&path).expect("bindings/python/test-constraints.txt");
+        let pins = text
+            .lines()
+            .filter(|line| !line.starts_with('#') && !line.trim().is_empty())
+            .map(|line| {
+                let (name, version) = line.split_once("==").expect("name==version");
+                (normal(name), version.trim().to_string())
+            })
+            .collect();
+        Constraints { path, pins }
     }
-    assert!(
-        unpinned.is_empty(),
-        "installed at a version bindings/python/test-constraints.txt does not pin: {unpinned:?}"
-    );
+
+    /// These with `name` at `version`, written into `dir`.
+    fn with(&self, name: &str, version: &str, dir: &Path) -> Self {
+        let mut pins = self.pins.clone();
+        let pin = pins
+            .iter_mut()
+            .find(|(pinned, _)| *pinned == normal(name))
+            .expect("a pinned package");
+        pin.1 = version.to_string();
+        let text: String = pins
+            .iter()
+            .map(|(name, version)| format!("{name}=={version}\n"))
+            .collect();
+        let path = dir.join(format!("constraints-{name}-{version}.txt"));
+        std::fs::write(&path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        Constraints { path, pins }
+    }
+
+    /// `command` (a pip command) held to these versions, in the isolated environments where it
+    /// builds packages too. Not for `python3 -m venv`: its pip comes from the interpreter, whatever
+    /// its version.
+    fn applied(&self, mut command: Command) -> Command {
+        command.env("PIP_CONSTRAINT", &self.path);
+        command
+    }
+
+    /// Every package `python`'s environment holds from PyPI is at the version pinned here: a new
+    /// dependency of a pinned one must be pinned too. The package itself and what `python3 -m
+    /// venv` put there (setuptools, on some Pythons) are not from PyPI.
+    fn hold_every_package(&self, python: &Path) {
+        let mut list = Command::new(python);
+        list.args(["-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"]);
+        let output = run_ok(clean(list), "pip list");
+        let installed = String::from_utf8_lossy(&output.stdout).into_owned();
+        let unpinned: Vec<&str> = installed
+            .lines()
+            .filter(|line| {
+                let (name, version) = line.split_once("==").unwrap_or((line, ""));
+                let name = normal(name);
+                !["tbasis", "setuptools"].contains(&name.as_str())
+                    && !self.pins.iter().any(|(pin, pinned)| *pin == name && pinned == version)
+            })
+            .collect();
+        assert!(
+            unpinned.is_empty(),
+            "installed at a version {} does not pin: {unpinned:?}",
+            self.path.display()
+        );
+    }
+}
+
+/// A package name as pip compares them: case, `-`, `_` and `.` aside.
+fn normal(name: &str) -> String {
+    name.to_ascii_lowercase().replace(['-', '.'], "_")
 }
 
 /// The interpreter of a virtual environment.
