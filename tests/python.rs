@@ -2,7 +2,8 @@
 //! from the source tree, the wheel goes into a fresh virtual environment with its `gltf` extra and
 //! the test tools, and its tests run there from a directory outside the repository, so that they
 //! import the installed package, never the source tree: pytest (`bindings/python/tests/`), then
-//! `mypy --strict` on the tests, the examples and the package's own sources. maturin also builds
+//! `mypy --strict` on the tests, the examples and the package's own sources, and vermin on them
+//! all for Python 3.9, the oldest the package supports. maturin also builds
 //! the source distribution, which pip installs into another fresh virtual environment, where the
 //! package's example runs. Last, pytest runs again in a third one, on the oldest numpy with wheels
 //! for the running Python: numpy 1 as well as 2.
@@ -26,7 +27,7 @@ const CRATE_DIR: &str = env!("CARGO_MANIFEST_DIR");
 
 /// The tools the tests need besides the package, which brings numpy, and its `gltf` extra, which
 /// brings what the glTF example needs (trimesh and Pillow).
-const TEST_TOOLS: [&str; 2] = ["pytest", "mypy"];
+const TEST_TOOLS: [&str; 3] = ["pytest", "mypy", "vermin"];
 
 #[test]
 fn python_package_builds_installs_and_passes_its_tests() {
@@ -92,6 +93,15 @@ fn python_package_builds_installs_and_passes_its_tests() {
         .arg(package.join("python/tbasis"))
         .current_dir(&outside);
     run_ok(clean(sources), "mypy --strict on the package's sources");
+    // One wheel for every CPython from 3.9 on, which mypy no longer targets: vermin finds
+    // the oldest Python each file's syntax and standard library calls need.
+    // vermin runs as its script alone, beside the interpreter.
+    let script = if cfg!(windows) { "vermin.exe" } else { "vermin" };
+    let mut oldest = Command::new(python.with_file_name(script));
+    oldest
+        .args(["--target=3.9-", "--violations", "--no-tips", "--eval-annotations"])
+        .args(["python/tbasis", "tests", "examples"].map(|dir| package.join(dir)));
+    run_ok(clean(oldest), "vermin: every Python file runs on Python 3.9");
 
     install_the_source_distribution(&python, &package, &work, &outside);
 
