@@ -148,11 +148,12 @@ typedef struct tbasis_output {
 // `TBASIS_ERROR_INDEX_OUT_OF_RANGE` (then only `failed_triangle` is set, the counts are 0), left
 // as it was on every other status.
 typedef struct tbasis_report {
-  // Triangles whose UV determinant is zero (LEGACY) or whose UV or position quality is below the
-  // threshold (other policies), or that read a non-finite input. Method MIKKTSPACE counts the
-  // triangles mikktspace.c cannot use: two corners at one position, or no texture derivatives
-  // (a UV area, |dP/ds| or |dP/dt| that is zero or below the smallest normal float); with
-  // REJECT, whose test decides instead, a successful call has none.
+  // Triangles whose UV determinant is zero (method LENGYEL with policy LEGACY, the listing) or
+  // whose UV or position quality is below the threshold (other policies), or that read a
+  // non-finite input. Method MIKKTSPACE counts the triangles mikktspace.c cannot use: two corners
+  // at one position, or no texture derivatives (a UV area, |dP/ds| or |dP/dt| that is NaN or not
+  // above the smallest normal float in magnitude); with REJECT, whose test decides instead, a
+  // successful call has none.
   size_t degenerate_triangles;
   // Index of the first such triangle; `TBASIS_NO_TRIANGLE` when there is none.
   size_t first_degenerate_triangle;

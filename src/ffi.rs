@@ -103,11 +103,12 @@ pub const TBASIS_NO_TRIANGLE: usize = usize::MAX;
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct tbasis_report {
-    /// Triangles whose UV determinant is zero (LEGACY) or whose UV or position quality is below the
-    /// threshold (other policies), or that read a non-finite input. Method MIKKTSPACE counts the
-    /// triangles mikktspace.c cannot use: two corners at one position, or no texture derivatives
-    /// (a UV area, |dP/ds| or |dP/dt| that is zero or below the smallest normal float); with
-    /// REJECT, whose test decides instead, a successful call has none.
+    /// Triangles whose UV determinant is zero (method LENGYEL with policy LEGACY, the listing) or
+    /// whose UV or position quality is below the threshold (other policies), or that read a
+    /// non-finite input. Method MIKKTSPACE counts the triangles mikktspace.c cannot use: two corners
+    /// at one position, or no texture derivatives (a UV area, |dP/ds| or |dP/dt| that is NaN or not
+    /// above the smallest normal float in magnitude); with REJECT, whose test decides instead, a
+    /// successful call has none.
     pub degenerate_triangles: usize,
     /// Index of the first such triangle; `TBASIS_NO_TRIANGLE` when there is none.
     pub first_degenerate_triangle: usize,

@@ -6,13 +6,13 @@
 //! all for Python 3.9, the oldest the package supports. maturin also builds
 //! the source distribution, which pip installs into another fresh virtual environment, where the
 //! package's example runs. Last, pytest runs again in a third one, on the oldest numpy with wheels
-//! for the running Python: numpy 1 as well as 2.
+//! for the running Python (numpy 1 up to Python 3.12).
 //!
 //! The tests compare the package with this crate's C library (a release build), whose path they
 //! get in `TBASIS_REFERENCE_LIBRARY`. Everything the virtual environment holds comes from the
 //! package index (PyPI), at the versions `bindings/python/test-constraints.txt` pins, in the build
-//! environments too. Without python3 and its venv and pip modules the test is skipped, except
-//! under CI, where it fails (`tbasis_test_support::needs`).
+//! environments too. Without python3 3.11 or later and its venv and pip modules the test is
+//! skipped, except under CI, where it fails (`tbasis_test_support::needs`).
 
 mod common;
 
@@ -44,7 +44,8 @@ fn python_package_builds_installs_and_passes_its_tests() {
     assert!(reference.is_file(), "{} was not built", reference.display());
 
     let pins = Constraints::of_the_package();
-    let python = fresh_venv(&work.join("venv"), &pins);
+    let venv = fresh_venv(&work.join("venv"), &pins);
+    let python = venv.python.clone();
 
     // The wheel, built as `pip install ./bindings/python` builds it, into the target dir rather
     // than the source tree, with the test-only feature `fault-injection` (maturin's PEP 517
@@ -69,7 +70,7 @@ fn python_package_builds_installs_and_passes_its_tests() {
     let mut tools = vec!["install", "maturin"];
     tools.extend(TEST_TOOLS);
     pip(&python, &pins, &tools);
-    pins.hold_every_package(&python);
+    pins.assert_every_package_pinned(&venv);
 
     // Outside the repository, so that `import tbasis` can only find the installed package.
     let outside = fresh_dir(&work.join("run"));
@@ -93,26 +94,26 @@ fn python_package_builds_installs_and_passes_its_tests() {
         .arg(package.join("python/tbasis"))
         .current_dir(&outside);
     run_ok(clean(sources), "mypy --strict on the package's sources");
-    // One wheel for every CPython from 3.9 on, which mypy no longer targets: vermin finds
-    // the oldest Python each file's syntax and standard library calls need.
-    // vermin runs as its script alone, beside the interpreter.
+    // One wheel for every CPython from 3.9 on, which mypy no longer targets: vermin finds the
+    // oldest Python each file's syntax and standard library calls need. It has no `python -m`
+    // entry point: its script, beside the interpreter.
     let script = if cfg!(windows) { "vermin.exe" } else { "vermin" };
-    let mut oldest = Command::new(python.with_file_name(script));
-    oldest
+    let mut vermin = Command::new(python.with_file_name(script));
+    vermin
         .args(["--target=3.9-", "--violations", "--no-tips", "--eval-annotations"])
         .args(["python/tbasis", "tests", "examples"].map(|dir| package.join(dir)));
-    run_ok(clean(oldest), "vermin: every Python file runs on Python 3.9");
+    run_ok(clean(vermin), "vermin: every Python file runs on Python 3.9");
 
-    install_the_source_distribution(&python, &package, &work, &outside);
+    install_the_source_distribution(&python, &pins, &package, &work, &outside);
 
-    // numpy 1 as well as 2: the package's tests on the oldest numpy this Python can install.
+    // The package's tests on the oldest numpy this Python can install: numpy 1 up to Python 3.12.
     match oldest_numpy() {
         Some(oldest) => {
             let pins = pins.with("numpy", oldest, &work);
-            let python = fresh_venv(&work.join("oldest-numpy-venv"), &pins);
-            pip(&python, &pins, &["install", &with_extra, "pytest"]);
-            pins.hold_every_package(&python);
-            pytest(&python, &package, &outside, &reference);
+            let venv = fresh_venv(&work.join("oldest-numpy-venv"), &pins);
+            pip(&venv.python, &pins, &["install", &with_extra, "pytest"]);
+            pins.assert_every_package_pinned(&venv);
+            pytest(&venv.python, &package, &outside, &reference);
         }
         // Under CI, as for a missing tool (`needs`), a check left out is a failure.
         None if std::env::var_os("CI").is_some() => panic!("the oldest numpy for this Python is not known"),
@@ -121,7 +122,7 @@ fn python_package_builds_installs_and_passes_its_tests() {
 }
 
 /// The oldest numpy release with wheels for the Python `python3` runs (the package accepts numpy
-/// 1.21 on); `None` for a Python it does not name.
+/// 1.21 on; the test needs Python 3.11 on); `None` for a Python it does not name.
 fn oldest_numpy() -> Option<&'static str> {
     let mut version = Command::new("python3");
     version.args(["-c", "import sys; print(sys.version_info[1])"]);
@@ -129,10 +130,10 @@ fn oldest_numpy() -> Option<&'static str> {
         .trim()
         .to_string();
     match minor.as_str() {
-        "9" | "10" => Some("1.21.6"),
         "11" => Some("1.23.2"),
         "12" => Some("1.26.0"),
         "13" => Some("2.1.0"),
+        "14" => Some("2.3.2"),
         _ => None,
     }
 }
@@ -151,25 +152,43 @@ fn pytest(python: &Path, package: &Path, outside: &Path, reference: &Path) {
     run_ok(clean(pytest), "pytest bindings/python/tests");
 }
 
-/// A fresh virtual environment in `dir`, with pip at its pinned version; its interpreter.
-fn fresh_venv(dir: &Path, pins: &Constraints) -> PathBuf {
+/// A virtual environment: its interpreter, and what `python3 -m venv` put in it (`name==version`,
+/// from the interpreter rather than PyPI: pip, and setuptools on some Pythons).
+struct Venv {
+    python: PathBuf,
+    bundled: Vec<String>,
+}
+
+/// A fresh virtual environment in `dir`, with pip at its pinned version.
+fn fresh_venv(dir: &Path, pins: &Constraints) -> Venv {
     let venv = fresh_dir(dir);
     let mut create = Command::new("python3");
     create.args(["-m", "venv"]).arg(&venv);
     run_ok(clean(create), "python3 -m venv");
     let python = venv_python(&venv);
+    let bundled = installed(&python);
     // An old pip builds a copy of the source tree elsewhere, where the path dependency on this
     // crate does not resolve; a current one builds in place.
     pip(&python, pins, &["install", "--upgrade", "pip"]);
-    python
+    Venv { python, bundled }
+}
+
+/// The packages `python`'s environment holds, as `name==version`.
+fn installed(python: &Path) -> Vec<String> {
+    let mut list = Command::new(python);
+    list.args(["-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"]);
+    let output = run_ok(clean(list), "pip list");
+    String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect()
 }
 
 /// Builds the source distribution with maturin (from `python`'s virtual environment), checks that
 /// it holds regular files only, the licences among them, installs it with pip into a fresh virtual
 /// environment, and runs the package's example there. Its build shares the wheel's target dir, so
 /// that only the package's own crates are compiled again.
-fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, outside: &Path) {
-    let pins = Constraints::of_the_package();
+fn install_the_source_distribution(python: &Path, pins: &Constraints, package: &Path, work: &Path, outside: &Path) {
     let sdists = fresh_dir(&work.join("sdists"));
     let mut sdist = Command::new(python);
     sdist
@@ -182,7 +201,7 @@ fn install_the_source_distribution(python: &Path, package: &Path, work: &Path, o
     contents.args(["-c", SDIST_CONTENTS]).arg(&archive);
     run_ok(clean(contents), "the source distribution's contents");
 
-    let sdist_python = fresh_venv(&work.join("sdist-venv"), &pins);
+    let sdist_python = fresh_venv(&work.join("sdist-venv"), pins).python;
     let mut install = Command::new(&sdist_python);
     install
         .args(["-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
@@ -236,7 +255,7 @@ fn pip(python: &Path, pins: &Constraints, args: &[&str]) {
 struct Constraints {
     /// The file pip reads.
     path: PathBuf,
-    /// `(name, version)`, names normalized ([`normal`]).
+    /// `(name, version)`, names normalized ([`normalized_name`]).
     pins: Vec<(String, String)>,
 }
 
@@ -249,7 +268,7 @@ impl Constraints {
             .filter(|line| !line.starts_with('#') && !line.trim().is_empty())
             .map(|line| {
                 let (name, version) = line.split_once("==").expect("name==version");
-                (normal(name), version.trim().to_string())
+                (normalized_name(name), version.trim().to_string())
             })
             .collect();
         Constraints { path, pins }
@@ -260,7 +279,7 @@ impl Constraints {
         let mut pins = self.pins.clone();
         let pin = pins
             .iter_mut()
-            .find(|(pinned, _)| *pinned == normal(name))
+            .find(|(pinned, _)| *pinned == normalized_name(name))
             .expect("a pinned package");
         pin.1 = version.to_string();
         let text: String = pins
@@ -272,28 +291,27 @@ impl Constraints {
         Constraints { path, pins }
     }
 
-    /// `command` (a pip command) held to these versions, in the isolated environments where it
-    /// builds packages too. Not for `python3 -m venv`: its pip comes from the interpreter, whatever
-    /// its version.
+    /// `command` (a pip command) held to these versions, and so are the isolated environments
+    /// where it builds packages (pip 26.2 on reads those from `PIP_BUILD_CONSTRAINT` alone). Not
+    /// for `python3 -m venv`: its pip comes from the interpreter, whatever its version.
     fn applied(&self, mut command: Command) -> Command {
-        command.env("PIP_CONSTRAINT", &self.path);
+        command
+            .env("PIP_CONSTRAINT", &self.path)
+            .env("PIP_BUILD_CONSTRAINT", &self.path);
         command
     }
 
     /// Every package `python`'s environment holds from PyPI is at the version pinned here: a new
     /// dependency of a pinned one must be pinned too. The package itself and what `python3 -m
-    /// venv` put there (setuptools, on some Pythons) are not from PyPI.
-    fn hold_every_package(&self, python: &Path) {
-        let mut list = Command::new(python);
-        list.args(["-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"]);
-        let output = run_ok(clean(list), "pip list");
-        let installed = String::from_utf8_lossy(&output.stdout).into_owned();
-        let unpinned: Vec<&str> = installed
-            .lines()
+    /// venv` put there, as it put it, are not from PyPI.
+    fn assert_every_package_pinned(&self, venv: &Venv) {
+        let unpinned: Vec<String> = installed(&venv.python)
+            .into_iter()
             .filter(|line| {
                 let (name, version) = line.split_once("==").unwrap_or((line, ""));
-                let name = normal(name);
-                !["tbasis", "setuptools"].contains(&name.as_str())
+                let name = normalized_name(name);
+                name != "tbasis"
+                    && !venv.bundled.contains(line)
                     && !self.pins.iter().any(|(pin, pinned)| *pin == name && pinned == version)
             })
             .collect();
@@ -306,7 +324,7 @@ impl Constraints {
 }
 
 /// A package name as pip compares them: case, `-`, `_` and `.` aside.
-fn normal(name: &str) -> String {
+fn normalized_name(name: &str) -> String {
     name.to_ascii_lowercase().replace(['-', '.'], "_")
 }
 

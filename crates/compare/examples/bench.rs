@@ -690,6 +690,12 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64)
 }
 
+/// The quantiles `qs` of `samples`, which this sorts.
+fn quantiles<const N: usize>(samples: &mut [f64], qs: [f64; N]) -> [f64; N] {
+    samples.sort_by(f64::total_cmp);
+    qs.map(|q| quantile(samples, q))
+}
+
 /// Times every configuration on `scene`, round by round (a slow one in [`SLOW_SAMPLES`] of them;
 /// with `quick`, [`QUICK_ROUNDS`] rounds and a slow one in the first).
 fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
@@ -726,11 +732,10 @@ fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
         .into_iter()
         .zip(refused)
         .map(|(mut s, refused)| {
-            s.sort_by(f64::total_cmp);
-            let median = quantile(&s, 0.5);
+            let [q1, median, q3] = quantiles(&mut s, [0.25, 0.5, 0.75]);
             Measured {
                 median: Duration::from_secs_f64(median),
-                spread: (quantile(&s, 0.75) - quantile(&s, 0.25)) / median,
+                spread: (q3 - q1) / median,
                 samples: s.len(),
                 refused,
                 calls: scene.parts.len(),
@@ -777,9 +782,8 @@ fn consecutive_calls(args: &[String]) -> Result<(), String> {
             let row: Vec<String> = row.iter().map(|t| format!("{t:.1}")).collect();
             println!("  {}", row.join(" "));
         }
-        let mut sorted = times;
-        sorted.sort_by(f64::total_cmp);
-        let [low, q1, median, q3, high] = [0.0, 0.25, 0.5, 0.75, 1.0].map(|q| quantile(&sorted, q));
+        let mut times = times;
+        let [low, q1, median, q3, high] = quantiles(&mut times, [0.0, 0.25, 0.5, 0.75, 1.0]);
         println!("fastest {low:.1}, quartiles {q1:.1} / {median:.1} / {q3:.1}, slowest {high:.1}");
     }
     Ok(())
@@ -824,12 +828,19 @@ fn per_primitive(args: &[String]) -> Result<(), String> {
         })
         .collect();
     let mut outputs: Vec<Outputs> = scenes.iter().map(Outputs::of).collect();
-    // samples[primitive][configuration]
+    // samples[primitive][configuration], and the configurations that refused a primitive.
     let mut samples = vec![vec![Vec::new(); chosen.len()]; scenes.len()];
+    let mut refusals = Vec::new();
     for round in 0..=rounds {
         for (p, (scene, outputs)) in scenes.iter().zip(outputs.iter_mut()).enumerate() {
             for (k, config) in chosen.iter().enumerate() {
-                let time = run(config.generator, scene, outputs, 1).0;
+                let (time, refused) = run(config.generator, scene, outputs, 1);
+                if round == 0 && refused > 0 {
+                    refusals.push(format!(
+                        "{} refused primitive {p}: its times are the refusal's",
+                        config.name
+                    ));
+                }
                 if round > 0 {
                     samples[p][k].push(ns(time) / scene.vertices() as f64);
                 }
@@ -848,13 +859,7 @@ fn per_primitive(args: &[String]) -> Result<(), String> {
     }
     println!("\n{rounds} rounds, median ns/vertex per primitive:\n\n{header}\n{rule}");
     for (p, (scene, samples)) in scenes.iter().zip(&mut samples).enumerate() {
-        let medians: Vec<f64> = samples
-            .iter_mut()
-            .map(|times| {
-                times.sort_by(f64::total_cmp);
-                quantile(times, 0.5)
-            })
-            .collect();
+        let medians: Vec<f64> = samples.iter_mut().map(|times| quantiles(times, [0.5])[0]).collect();
         let part = &scene.parts[0];
         let mut row = format!("| {p} | {} | {} |", part.vertices(), part.corners());
         for median in &medians {
@@ -864,6 +869,9 @@ fn per_primitive(args: &[String]) -> Result<(), String> {
             write!(row, " {:.2}x |", median / medians[0]).unwrap();
         }
         println!("{row}");
+    }
+    for refusal in refusals {
+        println!("\n{refusal}");
     }
     Ok(())
 }

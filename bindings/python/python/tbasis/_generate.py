@@ -29,10 +29,11 @@ class Report:
 
     degenerate_triangles: int
     """Triangles whose UV or position quality is below the threshold, or whose inputs are not
-    finite (policy ``"legacy"``: exactly-zero UV determinants). Method ``"mikktspace"`` counts the
-    triangles mikktspace.c cannot use: two corners at one position, or no texture derivatives
-    (a UV area, |dP/ds| or |dP/dt| that is zero or below the smallest normal float); with
-    ``"reject"``, whose test decides instead, a successful call has none."""
+    finite (method ``"lengyel"`` with policy ``"legacy"``: exactly-zero UV determinants). Method
+    ``"mikktspace"`` counts the triangles mikktspace.c cannot use: two corners at one position, or
+    no texture derivatives (a UV area, |dP/ds| or |dP/dt| that is NaN or not above the smallest
+    normal float in magnitude); with ``"reject"``, whose test decides instead, a successful call
+    has none."""
     first_degenerate_triangle: Optional[int]
     """The first of them."""
     fallback_vertices: int

@@ -22,11 +22,11 @@
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Report {
     /// Triangles whose UV quality is below the threshold, whose positions have zero area, or
-    /// whose inputs are not finite. Policy LEGACY counts exactly-zero UV determinants only.
-    /// Method MIKKTSPACE counts the triangles mikktspace.c cannot use: two corners at one
-    /// position, or no texture derivatives (a UV area, |dP/ds| or |dP/dt| that is zero or below
-    /// the smallest normal float); with REJECT, whose test decides instead, a successful call has
-    /// none.
+    /// whose inputs are not finite. Method LENGYEL with policy LEGACY (the listing) counts
+    /// exactly-zero UV determinants only. Method MIKKTSPACE counts the triangles mikktspace.c cannot
+    /// use: two corners at one position, or no texture derivatives (a UV area, |dP/ds| or |dP/dt|
+    /// that is NaN or not above the smallest normal float in magnitude); with REJECT, whose test
+    /// decides instead, a successful call has none.
     pub degenerate_triangles: usize,
     /// Index of the first such triangle; `None` when there is none (the C report says
     /// `TBASIS_NO_TRIANGLE`).
