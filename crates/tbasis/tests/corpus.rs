@@ -7,8 +7,6 @@
 //! where it fails (`tbasis_test_support::needs`).
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 use std::time::Instant;
 
 use tbasis::{DegeneratePolicy, ErrorKind, Report};
@@ -175,33 +173,20 @@ fn check_file(file: &MeshFile) -> Vec<Failure> {
 fn check_corpus() -> Vec<Failure> {
     let dir = load::corpus_dir().expect("the corpus");
     let started = Instant::now();
-    let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
-    assert!(!rows.is_empty(), "MANIFEST.tsv lists no mesh");
-
-    // Files are independent: workers take the next one until none is left. The biggest file
-    // (FlightHelmet.cc1, 849k vertices) comes first in this order so it overlaps the rest.
-    let mut order: Vec<usize> = (0..rows.len()).collect();
-    order.sort_by_key(|&k| std::cmp::Reverse(rows[k].vertices));
-    let next = AtomicUsize::new(0);
-    let failures = Mutex::new(Vec::new());
     let workers = std::thread::available_parallelism().map_or(2, |n| n.get()).min(8);
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| {
-                while let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
-                    let found = match load::load(&dir, &rows[k]) {
-                        Ok(file) => check_file(&file),
-                        Err(message) => vec![Failure {
-                            path: rows[k].path.clone(),
-                            message: format!("cannot load: {message}"),
-                        }],
-                    };
-                    failures.lock().unwrap().extend(found);
-                }
-            });
-        }
-    });
-    let mut failures = failures.into_inner().unwrap();
+    let (rows, found) = load::check_in_parallel(
+        &dir,
+        workers,
+        |_| true,
+        |row, file| match file {
+            Ok(file) => check_file(&file),
+            Err(message) => vec![Failure {
+                path: row.path.clone(),
+                message: format!("cannot load: {message}"),
+            }],
+        },
+    );
+    let mut failures: Vec<Failure> = found.into_iter().flatten().collect();
     failures.sort_by(|a, b| (&a.path, &a.message).cmp(&(&b.path, &b.message)));
     eprintln!(
         "{} corpus files x 4 policies checked in {:.1?}",

@@ -29,7 +29,7 @@
 //! where they fail (`tbasis_test_support::needs`).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Mutex, OnceLock};
+use std::sync::OnceLock;
 use std::time::Instant;
 
 use proptest::collection::vec;
@@ -450,38 +450,21 @@ fn corpus_outcome() -> &'static CorpusOutcome {
 fn check_corpus() -> CorpusOutcome {
     let dir = load::corpus_dir().expect("the corpus");
     let started = Instant::now();
-    let rows = load::read_manifest(&dir).expect("MANIFEST.tsv");
-    assert!(!rows.is_empty(), "MANIFEST.tsv lists no mesh");
-    // Biggest first, so that it overlaps the rest; workers take the next file until none is left.
-    let mut order: Vec<usize> = (0..rows.len()).collect();
-    order.sort_by_key(|&k| std::cmp::Reverse(rows[k].vertices));
-    let next = AtomicUsize::new(0);
-    let outcome = Mutex::new(CorpusOutcome::default());
     let corners = AtomicUsize::new(0);
-    std::thread::scope(|scope| {
-        for _ in 0..2 {
-            scope.spawn(|| {
-                while let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
-                    let row = &rows[k];
-                    if load::left_to_optimized_builds(row) {
-                        continue;
-                    }
-                    let found = match load::load(&dir, row) {
-                        Ok(file) => check_corpus_file(row, &file.primitives, &corners),
-                        Err(e) => CorpusOutcome {
-                            bit_exact: vec![format!("{}: cannot load: {e}", row.path)],
-                            ..CorpusOutcome::default()
-                        },
-                    };
-                    let mut outcome = outcome.lock().unwrap();
-                    outcome.bit_exact.extend(found.bit_exact);
-                    outcome.stored.extend(found.stored);
-                    outcome.stored_notes.extend(found.stored_notes);
-                }
-            });
-        }
+    let wanted = |row: &load::ManifestRow| !load::left_to_optimized_builds(row);
+    let (rows, found) = load::check_in_parallel(&dir, 2, wanted, |row, file| match file {
+        Ok(file) => check_corpus_file(row, &file.primitives, &corners),
+        Err(e) => CorpusOutcome {
+            bit_exact: vec![format!("{}: cannot load: {e}", row.path)],
+            ..CorpusOutcome::default()
+        },
     });
-    let mut outcome = outcome.into_inner().unwrap();
+    let mut outcome = CorpusOutcome::default();
+    for found in found {
+        outcome.bit_exact.extend(found.bit_exact);
+        outcome.stored.extend(found.stored);
+        outcome.stored_notes.extend(found.stored_notes);
+    }
     outcome.bit_exact.sort();
     outcome.stored.sort();
     outcome.stored_notes.sort();

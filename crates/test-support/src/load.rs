@@ -127,6 +127,39 @@ pub fn left_to_optimized_builds(row: &ManifestRow) -> bool {
     skip
 }
 
+/// `check` on every file of the corpus in `dir` that `wanted` keeps, loaded (or why it could not
+/// be), on `workers` threads: each takes the next file until none is left, the largest first so
+/// that it overlaps the rest. Returns the manifest's rows and `check`'s results, in no set order.
+pub fn check_in_parallel<T: Send>(
+    dir: &Path,
+    workers: usize,
+    wanted: impl Fn(&ManifestRow) -> bool + Sync,
+    check: impl Fn(&ManifestRow, Result<MeshFile, String>) -> T + Sync,
+) -> (Vec<ManifestRow>, Vec<T>) {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::Mutex;
+
+    let rows = read_manifest(dir).expect("MANIFEST.tsv");
+    assert!(!rows.is_empty(), "MANIFEST.tsv lists no mesh");
+    let mut order: Vec<&ManifestRow> = rows.iter().collect();
+    order.sort_by_key(|row| std::cmp::Reverse(row.vertices));
+    let next = AtomicUsize::new(0);
+    let results = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                while let Some(&row) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
+                    if wanted(row) {
+                        let result = check(row, load(dir, row));
+                        results.lock().unwrap().push(result);
+                    }
+                }
+            });
+        }
+    });
+    (rows, results.into_inner().unwrap())
+}
+
 /// Every row of `dir/MANIFEST.tsv`, in file order. Columns are found by their header name.
 pub fn read_manifest(dir: &Path) -> Result<Vec<ManifestRow>, String> {
     let path = dir.join("MANIFEST.tsv");
