@@ -301,7 +301,7 @@ impl Constraints {
         command
     }
 
-    /// Every package `python`'s environment holds from PyPI is at the version pinned here: a new
+    /// Every package `venv` holds from PyPI is at the version pinned here: a new
     /// dependency of a pinned one must be pinned too. The package itself and what `python3 -m
     /// venv` put there, as it put it, are not from PyPI.
     fn assert_every_package_pinned(&self, venv: &Venv) {
