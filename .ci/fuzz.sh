@@ -24,7 +24,7 @@ cd "$root/fuzz"
 
 # shellcheck source=fuzz-toolchain.sh
 source "$root/.ci/fuzz-toolchain.sh"
-echo "fuzz: toolchain $toolchain ($(cargo "+$toolchain" --version)), ${seconds}s, seed $seed"
+echo "fuzz: toolchain ${toolchain:-default} ($(fuzz_cargo --version)), ${seconds}s, seed $seed"
 
 log="$(mktemp)"
 trap 'rm -f "$log" "$log.diff"' EXIT
@@ -38,14 +38,14 @@ fuzz() {
     shopt -s nullglob
     local inputs=("$known"/*)
     if ((${#inputs[@]} > 0)); then
-        cargo "+$toolchain" fuzz run "$target" "${inputs[@]}" -- -runs=1 "$@" >"$log" 2>&1 || {
+        fuzz_cargo fuzz run "$target" "${inputs[@]}" -- -runs=1 "$@" >"$log" 2>&1 || {
             cat "$log"
             echo "fuzz: $target: an input of $known fails" >&2
             exit 1
         }
     fi
     local status=0
-    cargo "+$toolchain" fuzz run "$target" "corpus/$target" "$known" -- \
+    fuzz_cargo fuzz run "$target" "corpus/$target" "$known" -- \
         -max_total_time="$seconds" -seed="$seed" -rss_limit_mb=2048 -timeout=10 \
         -print_final_stats=1 "$@" >"$log" 2>&1 || status=$?
     if ((status != 0)); then
@@ -62,13 +62,13 @@ fuzz() {
 # The past findings of the C ABI: each input alone, through the sanitized target, which must pass it
 # and decode it to its case.
 replay_regressions() {
-    cargo "+$toolchain" fuzz build generate >"$log" 2>&1 || {
+    fuzz_cargo fuzz build generate >"$log" 2>&1 || {
         cat "$log"
         echo "fuzz: generate does not build" >&2
         exit 1
     }
     # The writer of the inputs shares the target's modules: it must keep building with them.
-    cargo "+$toolchain" check --quiet --example regressions >"$log" 2>&1 || {
+    fuzz_cargo check --quiet --example regressions >"$log" 2>&1 || {
         cat "$log"
         echo "fuzz: the regressions writer (examples/regressions.rs) does not build" >&2
         exit 1
