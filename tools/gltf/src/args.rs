@@ -40,7 +40,8 @@ pub struct Args {
     pub force: bool,
 
     /// Accept buffer and image URIs that lead outside the input's folder (absolute paths, `..`,
-    /// links leading out, schemes other than data:), which are refused otherwise.
+    /// links leading out; for images, schemes other than data:), which are refused otherwise.
+    /// Buffers are read from files and data: URIs only.
     #[arg(long)]
     pub allow_outside_uris: bool,
 

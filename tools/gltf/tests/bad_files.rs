@@ -196,12 +196,18 @@ const WAYS_OUT: [WayOut; 4] = [
 fn buffers_outside_the_folder_are_refused() {
     for way in WAYS_OUT {
         let (input, output) = reaching_out(&format!("outside-{}", way.name), way.uri);
-        refused(&input, &output, "buffer 0: its uri");
-        refused(
-            &input,
-            &output,
-            "outside the file's folder; --allow-outside-uris reads it",
-        );
+        if way.readable {
+            refused(&input, &output, "buffer 0: its uri");
+            refused(
+                &input,
+                &output,
+                "outside the file's folder; --allow-outside-uris reads it",
+            );
+        } else {
+            // The flag would not make it readable: the message does not offer it.
+            refused(&input, &output, "buffer 0: cannot load file://");
+            refused(&input, &output, "only files and data URIs");
+        }
     }
 }
 
@@ -247,6 +253,32 @@ fn an_image_outside_the_folder_is_refused() {
         &output,
         "image 0: its uri \"textures/../../n.png\" climbs out with ..",
     );
+}
+
+/// An image URI with a scheme is never read (images are not), but the output would point at it:
+/// refused, and with `--allow-outside-uris` kept as it was.
+#[test]
+fn an_image_with_a_scheme_is_refused_unless_allowed() {
+    let uri = "https://example.com/n.png";
+    let (input, output) = folders("image-scheme");
+    let mut fixture = Fixture::mirrored_quad();
+    fixture.json["images"] = json!([{ "uri": uri }]);
+    let file = fixture.write_gltf(&input, "image");
+    refused(
+        &file,
+        &output,
+        "image 0: its uri \"https://example.com/n.png\" has a scheme",
+    );
+    let out = output.join("image.gltf");
+    let result = tool::run([
+        file.as_os_str(),
+        "--allow-outside-uris".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let written: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(written["images"][0]["uri"], json!(uri));
 }
 
 #[test]

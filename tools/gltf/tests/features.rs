@@ -443,9 +443,16 @@ impl Grid {
 
 /// Runs the tool on `fixture` written as `dir/name.glb`: each corner's tangent, as bits.
 fn corner_tangents(dir: &std::path::Path, fixture: &Fixture, name: &str) -> Vec<[u32; 4]> {
+    corner_tangents_with(dir, fixture, name, &[])
+}
+
+/// [`corner_tangents`] with the options `options` given to the tool too.
+fn corner_tangents_with(dir: &std::path::Path, fixture: &Fixture, name: &str, options: &[&str]) -> Vec<[u32; 4]> {
     let input = fixture.write_glb(dir, name);
     let output = dir.join(format!("{name}.out.glb"));
-    let result = tool::run([input.as_os_str(), "-o".as_ref(), output.as_os_str()]);
+    let mut args = vec![input.as_os_str(), "-o".as_ref(), output.as_os_str()];
+    args.extend(options.iter().map(std::ffi::OsStr::new));
+    let result = tool::run(args);
     assert!(
         result.status.success(),
         "{name}: {}",
@@ -478,6 +485,40 @@ fn every_accessor_layout_gives_the_same_tangents() {
             differ, 0,
             "{name}: corners whose tangent differs from the packed layout's"
         );
+    }
+}
+
+/// `--method` and `--policy` reach the library: each corner's tangent is what
+/// `tbasis::generate_corners` gives with those options and `flip_v` (glTF's V points down).
+#[test]
+fn method_and_policy_give_the_librarys_corners() {
+    use tbasis::{DegeneratePolicy as Policy, Method};
+    let dir = tool::fresh_dir("methods");
+    let grid = Grid::new();
+    let texcoords = grid.texcoord_floats();
+    let mesh = tbasis::Mesh::new(&grid.positions[..], &grid.normals[..])
+        .with_texcoords(&texcoords[..])
+        .with_indices(&grid.triangles[..]);
+    let choices = [
+        ("mikktspace", Method::Mikktspace, "legacy", Policy::Legacy),
+        ("mikktspace", Method::Mikktspace, "inherit", Policy::Inherit),
+        ("lengyel", Method::Lengyel, "legacy", Policy::Legacy),
+        ("angle", Method::Angle, "skip", Policy::Skip),
+        ("area", Method::Area, "inherit", Policy::Inherit),
+        ("uniform", Method::Uniform, "reject", Policy::Reject),
+    ];
+    for (method_name, method, policy_name, policy) in choices {
+        let options = tbasis::Options::default()
+            .with_method(method)
+            .with_policy(policy)
+            .with_flip_v(true);
+        let mut expected = vec![[0.0f32; 4]; grid.triangles.len()];
+        tbasis::generate_corners(&mesh, &options, &mut tbasis::StridedMut::from_slice(&mut expected)).unwrap();
+        let name = format!("{method_name}-{policy_name}");
+        let args = ["--method", method_name, "--policy", policy_name];
+        let got = corner_tangents_with(&dir, &grid.packed(), &name, &args);
+        let expected: Vec<[u32; 4]> = expected.iter().map(|t| t.map(f32::to_bits)).collect();
+        assert_eq!(got, expected, "{name}");
     }
 }
 
