@@ -3,13 +3,14 @@
  *
  *   harness [case-file [max-vertices]]
  *
- * Checks LEGACY results bit for bit against the port of the original listing (listing.c) on
- * generated meshes in every index form and layout, the per-corner output against the per-vertex one
- * (corners.c), provokes every status code and checks that a failing call writes nothing, and, given
+ * Checks the ABI against this soname's table (abi.c), LEGACY results bit for bit against the
+ * port of the original listing (listing.c) on generated meshes in every index form and layout,
+ * the per-corner output against the per-vertex one (corners.c), provokes every status code and checks that a failing call writes nothing, and, given
  * the case file the Rust tests write, runs the stability suite through the C ABI, skipping cases
  * above max-vertices when given (for slow memory checkers).
  * Prints one line per failed check, then "N passed, M failed".
  */
+#include "abi.h"
 #include "cases.h"
 #include "check.h"
 #include "corners.h"
@@ -1302,6 +1303,7 @@ int main(int argc, char **argv)
     corner_grids_made = mesh_grid(&corner_grids[1], 12, 9, 1) == 0 && corner_grids_made;
     threads_made = mesh_grid(&threads_grid, 130, 130, 0) == 0;
 
+    test_abi();
     test_version_and_strings();
     for (k = 0; k < MESHES; k++)
         if (check(made[k], "mesh %d: out of memory", k))
