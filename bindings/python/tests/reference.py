@@ -58,21 +58,23 @@ class Output(ctypes.Structure):
     ]
 
 
+# The report's counts, in the order of the package's Report; the C struct ends with
+# `failed_triangle`, which the package gives as the error's triangle instead.
+REPORT_COUNTS = (
+    "degenerate_triangles",
+    "first_degenerate_triangle",
+    "fallback_vertices",
+    "mirrored_vertices",
+    "unreferenced_vertices",
+    "inherited_vertices",
+    "abnormal_normals",
+    "repaired_corners",
+    "split_vertices",
+)
+
+
 class CReport(ctypes.Structure):
-    _fields_ = [
-        (name, ctypes.c_size_t)
-        for name in (
-            "degenerate_triangles",
-            "first_degenerate_triangle",
-            "fallback_vertices",
-            "mirrored_vertices",
-            "unreferenced_vertices",
-            "inherited_vertices",
-            "abnormal_normals",
-            "repaired_corners",
-            "split_vertices",
-        )
-    ]
+    _fields_ = [(name, ctypes.c_size_t) for name in REPORT_COUNTS + ("failed_triangle",)]
 
 
 @dataclass
@@ -129,7 +131,7 @@ def _options(method: int, policy: int, threshold: Optional[float], flip_v: bool)
 
 
 def _report(report: CReport) -> tuple[Optional[int], ...]:
-    values: list[Optional[int]] = [getattr(report, field[0]) for field in CReport._fields_]
+    values: list[Optional[int]] = [getattr(report, name) for name in REPORT_COUNTS]
     if values[1] == SIZE_MAX:
         values[1] = None
     return tuple(values)
