@@ -17,7 +17,8 @@
 //!   largest ones with fewer runs, see [`LARGE_SCENES`]);
 //! - random meshes drawn from small value sets (proptest), with `threads` 1 and 2;
 //! - the per-vertex output (each vertex gets its first corner's frame; a vertex no triangle uses
-//!   gets some finite unit frame) and the report's `split_vertices` (vertices whose corners do not
+//!   gets a finite unit frame, the fallback frame of its normal: [`an_unused_vertex_gets_the_fallback_frame`])
+//!   and the report's `split_vertices` (vertices whose corners do not
 //!   all have identical bits) and `unreferenced_vertices`, on both paths;
 //! - caller scratch of `scratch_size_for` bytes at unaligned offsets, identical to allocating.
 //!
@@ -960,5 +961,44 @@ proptest! {
     #[test]
     fn random_meshes_match_mikktspace_c(m in random_mesh()) {
         check_random(&m).map_err(TestCaseError::fail)?;
+    }
+}
+
+/// README ("MikkTSpace"): a vertex no triangle uses gets the fallback frame, the one every method
+/// builds from a normal alone (here: policy SKIP without texture coordinates), in normals of every
+/// direction, the one straight down and a zero one included.
+#[test]
+fn an_unused_vertex_gets_the_fallback_frame() {
+    let s = 1.0 / 14f32.sqrt();
+    let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [2.0, 2.0, 2.0f32]];
+    let texcoords = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5f32]];
+    for unused_normal in [
+        [0.0, 0.0, -1.0],
+        [1.0, 0.0, 0.0],
+        [s, 2.0 * s, -3.0 * s],
+        [0.0, 0.0, 0.0f32],
+    ] {
+        let normals = [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0], unused_normal];
+        let indices = [0u32, 1, 2];
+        let mesh = Mesh::new(&positions[..], &normals[..]).with_indices(&indices[..]);
+        let mut fallback = [[0.0f32; 4]; 4];
+        let alone = Options::default().with_policy(tbasis::DegeneratePolicy::Skip);
+        tbasis::generate(&mesh, &alone, &mut Output::new(&mut fallback[..])).unwrap();
+        for options in [
+            Options::mikktspace(),
+            Options::mikktspace().with_policy(tbasis::DegeneratePolicy::Skip),
+        ] {
+            let mut tangents = [[0.0f32; 4]; 4];
+            let with_uvs = mesh.with_texcoords(&texcoords[..]);
+            let report = tbasis::generate(&with_uvs, &options, &mut Output::new(&mut tangents[..])).unwrap();
+            let what = format!("normal {unused_normal:?}, {:?}", options.degenerate_policy);
+            assert_eq!(
+                (report.unreferenced_vertices, report.fallback_vertices),
+                (1, 1),
+                "{what}"
+            );
+            assert_eq!(tangents[3].map(f32::to_bits), fallback[3].map(f32::to_bits), "{what}");
+            assert_eq!(tangents[3][3], 1.0, "{what}: w");
+        }
     }
 }

@@ -825,3 +825,161 @@ fn every_case_keeps_the_invariants_under_every_robust_policy() {
         }
     }
 }
+
+/// A fan of congruent right triangles around vertex 0, each with its own two outer vertices, in
+/// triangle order: `Some(true)` for a right-handed one (u along +x, tangent +x, w = +1),
+/// `Some(false)` for a left-handed one (u along -x: tangent -x, w = -1), `None` for one whose UVs
+/// collapse to a point (degenerate). Every non-degenerate triangle's term at vertex 0 has the same
+/// length under every method, so each side's sum is as long as its triangle count.
+fn fold_fan(fan: &[Option<bool>]) -> (Vec<[f32; 3]>, Vec<[f32; 2]>, Vec<u32>) {
+    let (mut positions, mut texcoords, mut indices) = (vec![[0.0; 3]], vec![[0.0; 2]], Vec::new());
+    for &right in fan {
+        let first = positions.len() as u32;
+        positions.extend([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        texcoords.extend(match right {
+            Some(right) => [[if right { 1.0 } else { -1.0 }, 0.0], [0.0, 1.0]],
+            None => [[0.0, 0.0]; 2],
+        });
+        indices.extend([0, first, first + 1]);
+    }
+    (positions, texcoords, indices)
+}
+
+/// The mirror-fold rule (README, "Degenerate UVs and mirror folds"): a fold vertex takes the side
+/// of its first corner unless the other side's sum is more than twice as long; exactly twice keeps
+/// the first. Per corner ("Per-corner output"), its corners on the other side get that side's own
+/// frame and `w`, and its corner in a degenerate triangle the vertex's frame. Both orders, every
+/// per-vertex method, SKIP and INHERIT.
+#[test]
+fn a_fold_vertex_keeps_its_first_side_unless_the_other_is_more_than_twice_as_long() {
+    let (right, left, collapsed) = (Some(true), Some(false), None);
+    // (the fan, the w vertex 0 must get)
+    let fans: [(&[Option<bool>], f32); 4] = [
+        (&[left, right, collapsed, right], -1.0),
+        (&[left, right, right, right, collapsed], 1.0),
+        (&[right, collapsed, left, left], 1.0),
+        (&[right, left, left, left, collapsed], -1.0),
+    ];
+    for (fan, w) in fans {
+        let (positions, texcoords, indices) = fold_fan(fan);
+        let normals = vec![[0.0, 0.0, 1.0f32]; positions.len()];
+        let mesh = tbasis::Mesh::new(&positions[..], &normals[..])
+            .with_texcoords(&texcoords[..])
+            .with_indices(&indices[..]);
+        for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
+            for policy in [Policy::Skip, Policy::Inherit] {
+                let options = Options::default().with_method(method).with_policy(policy);
+                let mut tangents = vec![[0.0f32; 4]; positions.len()];
+                let report = tbasis::generate(&mesh, &options, &mut Output::new(&mut tangents[..])).unwrap();
+                let what = format!("{fan:?}, {method:?}, {policy:?}");
+                assert_eq!(
+                    (report.mirrored_vertices, report.degenerate_triangles),
+                    (1, 1),
+                    "{what}"
+                );
+                let frame = tangents[0];
+                assert_eq!(frame[3], w, "{what}: vertex 0's side");
+                let close = |t: [f32; 4], side: f32| {
+                    (t[0] - side).abs() < 1e-6 && t[1].abs() < 1e-6 && t[2].abs() < 1e-6 && t[3] == side
+                };
+                assert!(close(frame, w), "{what}: vertex 0's frame {frame:?}");
+                let mut corners = vec![[0.0f32; 4]; indices.len()];
+                tbasis::generate_corners(&mesh, &options, &mut StridedMut::from_slice(&mut corners)).unwrap();
+                for (t, side) in fan.iter().enumerate() {
+                    let corner = corners[3 * t];
+                    let at = format!("{what}: triangle {t}'s corner at vertex 0, {corner:?}");
+                    match side {
+                        Some(right) if (if *right { 1.0 } else { -1.0 }) != w => {
+                            assert!(close(corner, -w), "{at}: the other side's own frame")
+                        }
+                        _ => assert_eq!(corner.map(f32::to_bits), frame.map(f32::to_bits), "{at}: the vertex's"),
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// What uses vertex 0 in [`vertex_zero`].
+#[derive(Clone, Copy, PartialEq)]
+enum Fan {
+    /// The triangle (0, 0, 0), (1, 0, 0), (0, 1, 0), u along +x.
+    AlongX,
+    /// The same triangle, u along +y.
+    AlongY,
+    /// That triangle, u along +x, and (0, 0, 0), (-1, 0, 0), (0, -1, 0), whose u runs along -x:
+    /// the tangents cancel.
+    Cancelled,
+}
+
+/// Vertex 0's frame and the report, with SKIP and `method`, on `fan`, with vertex 0's normal
+/// `n0` and the others' +z.
+fn vertex_zero(method: Method, n0: [f32; 3], fan: Fan) -> ([f32; 4], Report) {
+    let positions = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+    ];
+    let mut normals = [[0.0, 0.0, 1.0f32]; 5];
+    normals[0] = n0;
+    // (u, v) = (x, y) on the first triangle, (y, -x) with `AlongY`; on the second, (-x, -y).
+    let mut texcoords = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 0.0], [0.0, 1.0f32]];
+    if fan == Fan::AlongY {
+        texcoords[1..3].copy_from_slice(&[[0.0, -1.0], [1.0, 0.0]]);
+    }
+    let cancelled = fan == Fan::Cancelled;
+    let indices: &[u32] = if cancelled { &[0, 1, 2, 0, 3, 4] } else { &[0, 1, 2] };
+    let used = if cancelled { 5 } else { 3 };
+    let mesh = tbasis::Mesh::new(&positions[..used], &normals[..used])
+        .with_texcoords(&texcoords[..used])
+        .with_indices(indices);
+    let mut tangents = [[0.0f32; 4]; 5];
+    let options = Options::default().with_method(method).with_policy(Policy::Skip);
+    let report = tbasis::generate(&mesh, &options, &mut Output::new(&mut tangents[..used])).unwrap();
+    (tangents[0], report)
+}
+
+/// README ("Degenerate UVs and mirror folds"): a tangent that Gram-Schmidt reduces below 1e-3 of
+/// the weight that went into it is not used, whether it lies along the normal or cancels; ANGLE
+/// weighs each triangle's tangent projected into the vertex's plane and normalized (mikktspace.c's
+/// term), so there only a projection of zero length or a cancelled sum is dropped.
+#[test]
+fn a_tangent_gram_schmidt_reduces_below_a_thousandth_is_not_used() {
+    // Vertex 0's normal tilted from its tangent, +x, by about `tilt` radians.
+    let tilted = |tilt: f32| {
+        let length = (1.0 + tilt * tilt).sqrt();
+        [1.0 / length, tilt / length, 0.0]
+    };
+    for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
+        for (tilt, reduced) in [(0.0, true), (5e-4, method != Method::Angle), (2e-3, false)] {
+            let (t, report) = vertex_zero(method, tilted(tilt), Fan::AlongX);
+            let what = format!("{method:?}, tilt {tilt}: {t:?}");
+            assert_eq!(report.fallback_vertices, usize::from(reduced), "{what}");
+            if !reduced {
+                // What is left of +x across the normal: along -y, x about the tilt.
+                assert!(t[1] < -0.99 && (t[0] - tilt).abs() < 1e-5 * tilt.max(1.0), "{what}");
+            }
+        }
+        let (_, report) = vertex_zero(method, [0.0, 0.0, 1.0], Fan::Cancelled);
+        assert_eq!(report.fallback_vertices, 1, "{method:?}: the cancelled sum");
+    }
+}
+
+/// README: a zero or non-finite normal gives the tangent sum's direction when there is one, else
+/// `(1, 0, 0)`, with `w = +1`.
+#[test]
+fn a_vertex_without_a_normal_takes_its_sums_direction_or_x() {
+    for method in [Method::Lengyel, Method::Angle, Method::Area, Method::Uniform] {
+        for n0 in [[0.0, 0.0, 0.0], [f32::NAN, 0.0, 1.0], [f32::INFINITY, 0.0, 0.0]] {
+            let what = format!("{method:?}, normal {n0:?}");
+            let (t, report) = vertex_zero(method, n0, Fan::AlongY);
+            assert_eq!(t, [0.0, 1.0, 0.0, 1.0], "{what}: the sum, +y");
+            assert_eq!(report.abnormal_normals, 1, "{what}");
+            let (t, report) = vertex_zero(method, n0, Fan::Cancelled);
+            assert_eq!(t, [1.0, 0.0, 0.0, 1.0], "{what}: no sum");
+            assert_eq!((report.fallback_vertices, report.abnormal_normals), (1, 1), "{what}");
+        }
+    }
+}
