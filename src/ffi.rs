@@ -35,7 +35,7 @@ pub struct tbasis_mesh {
     /// Bytes from one normal to the next; at least 12.
     pub normals_stride: usize,
     /// float u, v in the first 8 bytes of each vertex; NULL: every vertex gets the fallback frame
-    /// (not allowed with policy LEGACY).
+    /// (not allowed with policy LEGACY or method MIKKTSPACE: `TBASIS_ERROR_NULL_POINTER`).
     pub texcoords: *const c_void,
     /// Bytes from one texture coordinate to the next; at least 8.
     pub texcoords_stride: usize,
@@ -542,7 +542,8 @@ pub unsafe extern "C" fn tbasis_split_corners(
 /// - `stride`: at least `element_size`;
 /// - `sources`, `appended_count`: as `tbasis_split_corners` returned them; every source below
 ///   `vertex_count` (checked even when `element_size` is 0, when nothing is copied and
-///   `attribute` may be NULL), and `sources` outside the address range of `attribute`.
+///   `attribute` may be NULL), and `sources` outside the address range of `attribute`. With
+///   `appended_count` 0 there is nothing to copy or check: `attribute` and `sources` may be NULL.
 ///
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
 /// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error but `_INTERNAL`
