@@ -1,8 +1,9 @@
-//! Many files at once: a pool of threads, one summary line per file, a progress bar for large
-//! batches.
+//! Many files at once: a pool of threads, one summary line per file in the order the files were
+//! given, a progress bar for large batches.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -34,25 +35,36 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> To
     let next = AtomicUsize::new(0);
     let failed = AtomicUsize::new(0);
     let changed = AtomicUsize::new(0);
-    let work = || {
-        while let Some(job) = jobs.get(next.fetch_add(1, Ordering::Relaxed)) {
-            let result = caught(|| convert(job, settings));
-            bar.suspend(|| match &result {
-                Ok(outcome) if !quiet => println!("{}", summary(job, outcome)),
-                Ok(_) => {}
-                Err(message) => eprintln!("tbasis-gltf: {}: {message}", job.input.display()),
-            });
-            match &result {
-                Ok(outcome) if outcome.changes() => {
-                    changed.fetch_add(1, Ordering::Relaxed);
-                }
-                Ok(_) => {}
-                Err(_) => {
-                    failed.fetch_add(1, Ordering::Relaxed);
-                }
+    let report = Mutex::new(InOrder {
+        next: 0,
+        waiting: (0..jobs.len()).map(|_| None).collect(),
+    });
+    let work = || loop {
+        let index = next.fetch_add(1, Ordering::Relaxed);
+        let Some(job) = jobs.get(index) else {
+            break;
+        };
+        let result = caught(|| convert(job, settings));
+        let line = match &result {
+            Ok(outcome) if !quiet => Some(Line::Out(summary(job, outcome))),
+            Ok(_) => None,
+            Err(message) => Some(Line::Err(format!("tbasis-gltf: {}: {message}", job.input.display()))),
+        };
+        // A poisoned lock only means another thread panicked while printing; the lines stand.
+        let mut report = report.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        report.waiting[index] = Some(line);
+        bar.suspend(|| report.print_ready());
+        drop(report);
+        match &result {
+            Ok(outcome) if outcome.changes() => {
+                changed.fetch_add(1, Ordering::Relaxed);
             }
-            bar.inc(1);
+            Ok(_) => {}
+            Err(_) => {
+                failed.fetch_add(1, Ordering::Relaxed);
+            }
         }
+        bar.inc(1);
     };
     std::thread::scope(|scope| {
         for _ in 1..workers.clamp(1, jobs.len().max(1)) {
@@ -64,6 +76,35 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> To
     Totals {
         failed: failed.into_inner(),
         changed: changed.into_inner(),
+    }
+}
+
+/// The summary lines of a batch, printed in the order of its files: a file's line waits until
+/// every file before it has printed its own.
+struct InOrder {
+    /// The first file whose line is not printed yet.
+    next: usize,
+    /// Per file: `Some` once it is done, with its line if it has one.
+    waiting: Vec<Option<Option<Line>>>,
+}
+
+/// A file's line, for stdout or stderr.
+enum Line {
+    Out(String),
+    Err(String),
+}
+
+impl InOrder {
+    /// Prints the lines of the done files that no unfinished file precedes.
+    fn print_ready(&mut self) {
+        while let Some(done) = self.waiting.get_mut(self.next).and_then(Option::take) {
+            match done {
+                Some(Line::Out(line)) => println!("{line}"),
+                Some(Line::Err(line)) => eprintln!("{line}"),
+                None => {}
+            }
+            self.next += 1;
+        }
     }
 }
 
