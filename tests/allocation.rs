@@ -30,28 +30,53 @@ use tbasis_test_support::shapes::Poles;
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// The C entry points with caller scratch allocate nothing either: the boundary's checks included.
+/// The C entry points with caller scratch allocate nothing either, the boundary's checks
+/// included: every method and policy, and the defaults.
 #[test]
 fn the_c_boundary_with_caller_scratch_allocates_nothing() {
+    use codes::*;
     use std::ffi::c_void;
     use std::ptr::null_mut;
 
-    for case in [unit_quad(), mirror_fold(), quantized_uv_sphere()] {
+    let methods = [
+        0,
+        TBASIS_METHOD_LENGYEL,
+        TBASIS_METHOD_ANGLE,
+        TBASIS_METHOD_AREA,
+        TBASIS_METHOD_UNIFORM,
+        TBASIS_METHOD_MIKKTSPACE,
+    ];
+    let policies = [
+        0,
+        TBASIS_DEGENERATE_LEGACY,
+        TBASIS_DEGENERATE_SKIP,
+        TBASIS_DEGENERATE_INHERIT,
+        TBASIS_DEGENERATE_REJECT,
+    ];
+    let choices = methods
+        .into_iter()
+        .flat_map(|method| policies.into_iter().map(move |policy| (method, policy)));
+    let mut computed = 0;
+    for (case, (method, policy)) in [unit_quad(), mirror_fold(), quantized_uv_sphere()]
+        .into_iter()
+        .flat_map(|case| choices.clone().map(move |choice| (case.clone(), choice)))
+    {
         let indices = case.indices.as_ref().unwrap();
         let mesh = c_mesh(&case);
         let mut options = ffi::tbasis_options {
-            method: 0,
-            degenerate_policy: 0,
+            method,
+            degenerate_policy: policy,
             flags: 0,
             threads: 1,
             degenerate_threshold: 0.0,
             scratch: null_mut(),
             scratch_size: 0,
         };
+        // SIZE_MAX: options the call refuses (LEGACY without a legacy form), given no scratch.
         let needed = unsafe { ffi::tbasis_scratch_size(&mesh, &options) };
-        let mut scratch = vec![0u8; needed];
+        let mut scratch = vec![0u8; if needed == usize::MAX { 0 } else { needed }];
         options.scratch = scratch.as_mut_ptr().cast::<c_void>();
-        options.scratch_size = needed;
+        options.scratch_size = scratch.len();
         let mut tangents = vec![[0.0f32; 4]; case.vertex_count()];
         let mut bitangents = vec![[0.0f32; 3]; case.vertex_count()];
         let mut corners = vec![[0.0f32; 4]; indices.len()];
@@ -66,14 +91,19 @@ fn the_c_boundary_with_caller_scratch_allocates_nothing() {
         let corner_status =
             unsafe { ffi::tbasis_generate_corners(&mesh, &options, corners.as_mut_ptr().cast(), 16, null_mut()) };
         let made = allocations() - before;
-        assert_eq!(
-            (status, corner_status),
-            (status::TBASIS_OK, status::TBASIS_OK),
-            "{}",
-            case.name
+        let what = format!("{} method {method} policy {policy}", case.name);
+        assert_eq!(status, corner_status, "{what}: per vertex and per corner");
+        // Refusals are the LEGACY policy of a method without its legacy form and REJECT of the
+        // sphere's degenerate poles; they too must not allocate.
+        let refused = [status::TBASIS_ERROR_NO_LEGACY_FORM, status::TBASIS_ERROR_DEGENERATE_UV];
+        assert!(
+            status == status::TBASIS_OK || refused.contains(&status),
+            "{what}: status {status}"
         );
-        assert_eq!(made, 0, "{}: the C calls allocated", case.name);
+        computed += usize::from(status == status::TBASIS_OK);
+        assert_eq!(made, 0, "{what}: the C calls allocated");
     }
+    assert!(computed >= 3 * 6 * 3, "most combinations compute: {computed}");
 }
 
 /// Methods LENGYEL, ANGLE, AREA and UNIFORM under every policy (one thread, the library's own
