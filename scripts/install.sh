@@ -192,3 +192,8 @@ render "$root/packaging/tbasisConfigVersion.cmake.in" \
 
 echo "installed tbasis $version ($profile, soname $soname) into $dest"
 echo "installed tbasis_mikktspace $version ($profile, soname $dropin_soname) into $dest"
+# The loader finds a new library in a system prefix only once its cache is rebuilt.
+if [ -z "${DESTDIR:-}" ]; then
+  echo "programs find $soname by its soname: run ldconfig (as root) after installing into a system" \
+    "prefix such as /usr/local; elsewhere link with -Wl,-rpath,$prefix/lib or set LD_LIBRARY_PATH"
+fi
