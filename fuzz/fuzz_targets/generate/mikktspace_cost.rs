@@ -1,6 +1,8 @@
 //! What the reference, mikktspace.c, would spend on a mesh in its three steps that are quadratic in
 //! the worst case, so that the harness can leave it out where one input would run for seconds
-//! (the library's own port has none of them; mikktspace.c is only the oracle):
+//! (mikktspace.c is only the oracle; the library's port takes linear routes for all three but
+//! where it must replay the C's weld within a run of equal hashes, or compare a group's corners
+//! pairwise in `GenerateTSpaces`: docs/mikktspace-fast-path.md):
 //!
 //! - the weld (`GenerateSharedVerticesIndexList`): corners are hashed into 2048 cells along the
 //!   widest axis of their positions, then each cell is split at the midpoint of its widest axis
