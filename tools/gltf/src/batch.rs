@@ -1,9 +1,10 @@
 //! Many files at once: a pool of threads, one summary line per file in the order the files were
 //! given, a progress bar for large batches.
 
+use std::io::Write;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::{Mutex, PoisonError};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -35,10 +36,7 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> To
     let next = AtomicUsize::new(0);
     let failed = AtomicUsize::new(0);
     let changed = AtomicUsize::new(0);
-    let report = Mutex::new(InOrder {
-        next: 0,
-        waiting: (0..jobs.len()).map(|_| None).collect(),
-    });
+    let report = Mutex::new(InOrder::new(jobs.len()));
     let work = || loop {
         let index = next.fetch_add(1, Ordering::Relaxed);
         let Some(job) = jobs.get(index) else {
@@ -50,10 +48,13 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> To
             Ok(_) => None,
             Err(message) => Some(Line::Err(format!("tbasis-gltf: {}: {message}", job.input.display()))),
         };
-        // A poisoned lock only means another thread panicked while printing; the lines stand.
-        let mut report = report.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        report.waiting[index] = Some(line);
-        bar.suspend(|| report.print_ready());
+        // Nothing panics while holding the lock (writes that fail are dropped), so a poisoned
+        // one cannot hold a half-made state.
+        let mut report = report.lock().unwrap_or_else(PoisonError::into_inner);
+        report.slots[index] = Slot::Done(line);
+        if report.ready() {
+            bar.suspend(|| report.print_ready(print));
+        }
         drop(report);
         match &result {
             Ok(outcome) if outcome.changes() => {
@@ -84,28 +85,61 @@ pub fn run(jobs: &[Job], settings: &Settings, workers: usize, quiet: bool) -> To
 struct InOrder {
     /// The first file whose line is not printed yet.
     next: usize,
-    /// Per file: `Some` once it is done, with its line if it has one.
-    waiting: Vec<Option<Option<Line>>>,
+    slots: Vec<Slot>,
+}
+
+/// A file of the batch, as far as its line goes.
+enum Slot {
+    /// Not done yet.
+    Pending,
+    /// Done, with its line if it has one.
+    Done(Option<Line>),
+    /// Its line was printed (or it had none).
+    Printed,
 }
 
 /// A file's line, for stdout or stderr.
+#[derive(Debug, PartialEq)]
 enum Line {
     Out(String),
     Err(String),
 }
 
 impl InOrder {
-    /// Prints the lines of the done files that no unfinished file precedes.
-    fn print_ready(&mut self) {
-        while let Some(done) = self.waiting.get_mut(self.next).and_then(Option::take) {
-            match done {
-                Some(Line::Out(line)) => println!("{line}"),
-                Some(Line::Err(line)) => eprintln!("{line}"),
-                None => {}
-            }
-            self.next += 1;
+    fn new(files: usize) -> Self {
+        InOrder {
+            next: 0,
+            slots: (0..files).map(|_| Slot::Pending).collect(),
         }
     }
+
+    /// Whether the next file to print is done.
+    fn ready(&self) -> bool {
+        matches!(self.slots.get(self.next), Some(Slot::Done(_)))
+    }
+
+    /// Hands `emit` the lines of the done files that no unfinished file precedes, in order.
+    fn print_ready(&mut self, mut emit: impl FnMut(Line)) {
+        while let Some(slot) = self.slots.get_mut(self.next) {
+            let Slot::Done(line) = std::mem::replace(slot, Slot::Printed) else {
+                *slot = Slot::Pending;
+                break;
+            };
+            self.next += 1;
+            if let Some(line) = line {
+                emit(line);
+            }
+        }
+    }
+}
+
+/// Writes a line where it belongs. A closed stdout (`tbasis-gltf ... | head`) loses the lines
+/// after it, not the errors, and stops nothing.
+fn print(line: Line) {
+    let _ = match line {
+        Line::Out(text) => writeln!(std::io::stdout().lock(), "{text}"),
+        Line::Err(text) => writeln!(std::io::stderr().lock(), "{text}"),
+    };
 }
 
 /// `in.glb -> out.glb: 3 primitives done, 120 vertices added, 0.25 s`, or with `--check`
@@ -163,6 +197,21 @@ fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lines_come_out_in_the_order_of_the_files_whatever_the_order_they_end_in() {
+        let mut lines = InOrder::new(4);
+        let mut printed = Vec::new();
+        for (file, line) in [(2, Some("c")), (1, None), (3, Some("d")), (0, Some("a"))] {
+            lines.slots[file] = Slot::Done(line.map(|text: &str| Line::Out(text.to_string())));
+            lines.print_ready(|line| printed.push(line));
+            // Nothing before file 0 ends; then all of it, file 1 without a line.
+            let expected: &[&str] = if file == 0 { &["a", "c", "d"] } else { &[] };
+            let expected: Vec<Line> = expected.iter().map(|text| Line::Out(text.to_string())).collect();
+            assert_eq!(printed, expected, "after file {file}");
+        }
+        assert!(!lines.ready());
+    }
 
     #[test]
     fn a_caught_panic_gives_its_message() {

@@ -38,7 +38,7 @@ pub fn load(json: &Value, mut glb_bin: Option<Vec<u8>>, dir: &Path) -> Result<Ve
             }
             Some(text) => match uri::data(text) {
                 Some(decoded) => decoded.map_err(|e| format!("buffer {i}: {e}"))?,
-                None if uri::is_relative_file(text) => {
+                None if uri::readable(text) => {
                     let path = uri::resolve(dir, text);
                     crate::io::read_file(&path)
                         .map_err(|e| format!("missing buffer {i}: cannot read {}: {e}", path.display()))?

@@ -178,14 +178,13 @@ fn finish(
 /// not.
 fn check_uris_stay_inside(json: &Value, dir: &Path) -> Result<(), String> {
     for (list, index, text) in uri::document_uris(json) {
-        let unreadable = list == "buffer" && !text.starts_with("data:") && !uri::is_relative_file(text);
-        if unreadable {
+        if list == "buffer" && !uri::readable(text) {
             continue;
         }
         if let Some(why) = uri::outside(dir, text) {
             return Err(format!(
                 "{list} {index}: its uri {text:?} {why}, outside the file's folder; \
-                 --allow-outside-uris reads it all the same"
+                 --allow-outside-uris accepts it all the same"
             ));
         }
     }

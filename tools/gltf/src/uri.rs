@@ -39,6 +39,12 @@ pub fn is_relative_file(uri: &str) -> bool {
     }
 }
 
+/// Whether the tool can read `uri` at all: a `data:` URI or a relative path (what
+/// [`crate::buffers::load`] reads; any other scheme it refuses).
+pub fn readable(uri: &str) -> bool {
+    uri.starts_with("data:") || is_relative_file(uri)
+}
+
 /// Every buffer and image URI of a document: (`buffer` or `image`, its index, the URI).
 pub fn document_uris(json: &Value) -> impl Iterator<Item = (&'static str, usize, &str)> {
     [("buffers", "buffer"), ("images", "image")]
@@ -61,7 +67,7 @@ pub fn outside(dir: &Path, uri: &str) -> Option<&'static str> {
         return None;
     }
     if !is_relative_file(uri) {
-        return Some("has a scheme (only data: and relative paths are read)");
+        return Some("has a scheme other than data:");
     }
     let path = decoded_path(uri);
     // `//host/x` (a network path) has a root; `C:/x` on Windows, a prefix.

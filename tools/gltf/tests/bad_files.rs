@@ -201,12 +201,15 @@ fn buffers_outside_the_folder_are_refused() {
             refused(
                 &input,
                 &output,
-                "outside the file's folder; --allow-outside-uris reads it",
+                "outside the file's folder; --allow-outside-uris accepts it",
             );
         } else {
             // The flag would not make it readable: the message does not offer it.
             refused(&input, &output, "buffer 0: cannot load file://");
             refused(&input, &output, "only files and data URIs");
+            let out = output.join("quad.gltf");
+            let stderr = tool::run([input.as_os_str(), "-o".as_ref(), out.as_os_str()]).stderr;
+            assert!(!String::from_utf8_lossy(&stderr).contains("--allow-outside-uris"));
         }
     }
 }

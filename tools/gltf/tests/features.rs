@@ -364,18 +364,9 @@ impl Grid {
         self.texcoords.iter().map(|&[u, v]| [decode(u), decode(v)]).collect()
     }
 
-    /// An empty document of one triangle primitive, for the layouts to fill.
-    fn fixture() -> Fixture {
-        let mut f = Fixture::mirrored_quad();
-        f.json["accessors"] = json!([]);
-        f.json["bufferViews"] = json!([]);
-        f.bin.clear();
-        f
-    }
-
     /// Every attribute packed in its own bufferView as floats, 16-bit indices.
     fn packed(&self) -> Fixture {
-        let mut f = Grid::fixture();
+        let mut f = Fixture::empty_primitive();
         let position = f.floats(&self.positions, "VEC3", true);
         let normal = f.floats(&self.normals, "VEC3", false);
         let texcoord = f.floats(&self.texcoord_floats(), "VEC2", false);
@@ -387,7 +378,7 @@ impl Grid {
 
     /// The three attributes interleaved in one bufferView (a 32-byte stride), 32-bit indices.
     fn interleaved(&self) -> Fixture {
-        let mut f = Grid::fixture();
+        let mut f = Fixture::empty_primitive();
         let texcoords = self.texcoord_floats();
         let mut bytes = Vec::new();
         for ((position, normal), texcoord) in self.positions.iter().zip(&self.normals).zip(&texcoords) {
@@ -414,7 +405,7 @@ impl Grid {
     /// What the tool converts: texture coordinates as normalized 16-bit integers, 8-bit indices,
     /// and positions whose vertex 7 is set by a sparse substitution.
     fn converted(&self) -> Fixture {
-        let mut f = Grid::fixture();
+        let mut f = Fixture::empty_primitive();
         let mut wrong = self.positions.clone();
         wrong[7] = [50.0, -3.0, 8.0];
         let position = f.floats(&wrong, "VEC3", true);
@@ -489,37 +480,63 @@ fn every_accessor_layout_gives_the_same_tangents() {
 }
 
 /// `--method` and `--policy` reach the library: each corner's tangent is what
-/// `tbasis::generate_corners` gives with those options and `flip_v` (glTF's V points down).
+/// `tbasis::generate_corners` gives with those options and `flip_v` (glTF's V points down), on a
+/// grid whose UVs collapse around one vertex, where the policies differ; REJECT refuses it.
 #[test]
 fn method_and_policy_give_the_librarys_corners() {
     use tbasis::{DegeneratePolicy as Policy, Method};
     let dir = tool::fresh_dir("methods");
-    let grid = Grid::new();
+    let mut grid = Grid::new();
+    // Vertices (1..=3, 1..=3) share one UV: every triangle at vertex (2, 2) is degenerate.
+    let collapsed = grid.texcoords[2 * 6 + 2];
+    for (y, x) in (1..=3).flat_map(|y| (1..=3).map(move |x| (y, x))) {
+        grid.texcoords[y * 6 + x] = collapsed;
+    }
     let texcoords = grid.texcoord_floats();
     let mesh = tbasis::Mesh::new(&grid.positions[..], &grid.normals[..])
         .with_texcoords(&texcoords[..])
         .with_indices(&grid.triangles[..]);
+    let library = |method, policy| {
+        let options = tbasis::Options::default()
+            .with_method(method)
+            .with_policy(policy)
+            .with_flip_v(true);
+        let mut corners = vec![[0.0f32; 4]; grid.triangles.len()];
+        let result = tbasis::generate_corners(&mesh, &options, &mut tbasis::StridedMut::from_slice(&mut corners));
+        result.map(|_| corners.iter().map(|t| t.map(f32::to_bits)).collect::<Vec<_>>())
+    };
     let choices = [
         ("mikktspace", Method::Mikktspace, "legacy", Policy::Legacy),
         ("mikktspace", Method::Mikktspace, "inherit", Policy::Inherit),
         ("lengyel", Method::Lengyel, "legacy", Policy::Legacy),
         ("angle", Method::Angle, "skip", Policy::Skip),
+        ("angle", Method::Angle, "inherit", Policy::Inherit),
         ("area", Method::Area, "inherit", Policy::Inherit),
-        ("uniform", Method::Uniform, "reject", Policy::Reject),
+        ("uniform", Method::Uniform, "skip", Policy::Skip),
     ];
+    let mut results = Vec::new();
     for (method_name, method, policy_name, policy) in choices {
-        let options = tbasis::Options::default()
-            .with_method(method)
-            .with_policy(policy)
-            .with_flip_v(true);
-        let mut expected = vec![[0.0f32; 4]; grid.triangles.len()];
-        tbasis::generate_corners(&mesh, &options, &mut tbasis::StridedMut::from_slice(&mut expected)).unwrap();
         let name = format!("{method_name}-{policy_name}");
         let args = ["--method", method_name, "--policy", policy_name];
         let got = corner_tangents_with(&dir, &grid.packed(), &name, &args);
-        let expected: Vec<[u32; 4]> = expected.iter().map(|t| t.map(f32::to_bits)).collect();
-        assert_eq!(got, expected, "{name}");
+        assert_eq!(Ok(&got), library(method, policy).as_ref(), "{name}");
+        results.push(got);
     }
+    // The policy decides what the collapsed corners get.
+    assert_ne!(results[0], results[1], "mikktspace: legacy and inherit");
+    assert_ne!(results[3], results[4], "angle: skip and inherit");
+    // REJECT: the library refuses the mesh, and the tool the file.
+    assert!(library(Method::Uniform, Policy::Reject).is_err());
+    let input = grid.packed().write_glb(&dir, "reject");
+    let output = dir.join("reject.out.glb");
+    let args = [input.as_os_str(), "-o".as_ref(), output.as_os_str()];
+    let result = tool::run(
+        args.into_iter()
+            .chain(["--method", "uniform", "--policy", "reject"].map(std::ffi::OsStr::new)),
+    );
+    assert_eq!(result.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&result.stderr).contains("degenerate"));
+    assert!(!output.exists());
 }
 
 #[test]

@@ -41,6 +41,16 @@ impl Fixture {
         fixture
     }
 
+    /// The document of [`Fixture::mirrored_quad`] without accessors, bufferViews or data: one
+    /// triangle primitive for a test to fill.
+    pub fn empty_primitive() -> Fixture {
+        let mut f = Fixture::mirrored_quad();
+        f.json["accessors"] = json!([]);
+        f.json["bufferViews"] = json!([]);
+        f.bin.clear();
+        f
+    }
+
     /// Adds a bufferView of raw `bytes` (with `byteStride` when given); returns it.
     pub fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
         while self.bin.len() % 4 != 0 {
