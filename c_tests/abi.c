@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 /* The structs as this soname froze them: same field names, types and order. */
 typedef struct frozen_mesh {
@@ -149,8 +150,9 @@ void test_abi(void)
               CONSTANTS[k].name, CONSTANTS[k].value, CONSTANTS[k].frozen);
     check(sizeof(tbasis_status) == 4, "abi: tbasis_status is %zu bytes, frozen at 4",
           sizeof(tbasis_status));
-    /* The table lists every status the header defines, up to the last. */
-    check(LAST_STATUS == TBASIS_ERROR_NO_LEGACY_FORM, "abi: a status past the table");
+    /* The table holds every status the library knows: the one after its last is unknown. */
+    check(strcmp(tbasis_status_string(TBASIS_ERROR_NO_LEGACY_FORM + 1), "unknown status") == 0,
+          "abi: the library knows a status past the table");
 
     SAME_SIZE(tbasis_mesh, frozen_mesh);
     SAME_FIELD(tbasis_mesh, frozen_mesh, vertex_count);
@@ -191,10 +193,6 @@ void test_abi(void)
     SAME_FIELD(tbasis_report, frozen_report, split_vertices);
     SAME_FIELD(tbasis_report, frozen_report, failed_triangle);
 
-    /* Every function of the table is the library's (compiled above with its frozen type). */
-    check(FUNCTIONS.generate && FUNCTIONS.generate_corners && FUNCTIONS.split_corners &&
-              FUNCTIONS.copy_split_vertices && FUNCTIONS.calculate_tangent_array &&
-              FUNCTIONS.scratch_size && FUNCTIONS.status_string && FUNCTIONS.version &&
-              FUNCTIONS.to_tangent_space && FUNCTIONS.from_tangent_space,
-          "abi: a function of the table is missing");
+    /* FUNCTIONS is checked as it compiles; nothing is left to check when it runs. */
+    (void)FUNCTIONS;
 }

@@ -5,9 +5,10 @@
  *
  * Checks the ABI against this soname's table (abi.c), LEGACY results bit for bit against the
  * port of the original listing (listing.c) on generated meshes in every index form and layout,
- * the per-corner output against the per-vertex one (corners.c), provokes every status code and checks that a failing call writes nothing, and, given
- * the case file the Rust tests write, runs the stability suite through the C ABI, skipping cases
- * above max-vertices when given (for slow memory checkers).
+ * the per-corner output against the per-vertex one (corners.c), provokes every status code and
+ * checks that a failing call writes nothing, and, given the case file the Rust tests write, runs
+ * the stability suite through the C ABI, skipping cases above max-vertices when given (for slow
+ * memory checkers).
  * Prints one line per failed check, then "N passed, M failed".
  */
 #include "abi.h"
