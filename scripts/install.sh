@@ -194,6 +194,7 @@ echo "installed tbasis $version ($profile, soname $soname) into $dest"
 echo "installed tbasis_mikktspace $version ($profile, soname $dropin_soname) into $dest"
 # The loader finds a new library in a system prefix only once its cache is rebuilt.
 if [ -z "${DESTDIR:-}" ]; then
-  echo "programs find $soname by its soname: run ldconfig (as root) after installing into a system" \
-    "prefix such as /usr/local; elsewhere link with -Wl,-rpath,$prefix/lib or set LD_LIBRARY_PATH"
+  echo "programs load $soname and $dropin_soname by soname: in a prefix the loader searches" \
+    "(/usr/local/lib on Debian), run ldconfig as root; elsewhere link with -Wl,-rpath,$prefix/lib" \
+    "or set LD_LIBRARY_PATH"
 fi

@@ -543,7 +543,8 @@ pub unsafe extern "C" fn tbasis_split_corners(
 /// - `sources`, `appended_count`: as `tbasis_split_corners` returned them; every source below
 ///   `vertex_count` (checked even when `element_size` is 0, when nothing is copied and
 ///   `attribute` may be NULL), and `sources` outside the address range of `attribute`. With
-///   `appended_count` 0 there is nothing to copy or check: `attribute` and `sources` may be NULL.
+///   `appended_count` 0 nothing is copied and `attribute` and `sources` may be NULL (the stride
+///   is still checked).
 ///
 /// Returns `TBASIS_OK`; `TBASIS_ERROR_NULL_POINTER`, `_INVALID_STRIDE`, `_INDEX_OUT_OF_RANGE`,
 /// `_SIZE_OVERFLOW`, `_OVERLAP`, `_OUT_OF_MEMORY` or `_INTERNAL`. On any error but `_INTERNAL`

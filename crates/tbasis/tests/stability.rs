@@ -888,11 +888,12 @@ fn a_fold_vertex_keeps_its_first_side_unless_the_other_is_more_than_twice_as_lon
                 for (t, side) in fan.iter().enumerate() {
                     let corner = corners[3 * t];
                     let at = format!("{what}: triangle {t}'s corner at vertex 0, {corner:?}");
-                    match side {
-                        Some(right) if (if *right { 1.0 } else { -1.0 }) != w => {
-                            assert!(close(corner, -w), "{at}: the other side's own frame")
-                        }
-                        _ => assert_eq!(corner.map(f32::to_bits), frame.map(f32::to_bits), "{at}: the vertex's"),
+                    // A right-handed triangle's w is +1, a left-handed one's -1.
+                    let on_the_other_side = side.is_some_and(|right| right != (w > 0.0));
+                    if on_the_other_side {
+                        assert!(close(corner, -w), "{at}: the other side's own frame");
+                    } else {
+                        assert_eq!(corner.map(f32::to_bits), frame.map(f32::to_bits), "{at}: the vertex's");
                     }
                 }
             }
