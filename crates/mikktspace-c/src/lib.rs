@@ -230,3 +230,19 @@ pub unsafe extern "C" fn genTangSpace(pContext: *const SMikkTSpaceContext, fAngu
 pub extern "C" fn tbasis_mikktspace_set_threads(threads: c_int) {
     THREADS.store(u32::try_from(threads).unwrap_or(1).max(1), Ordering::Relaxed);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// README ("Replacing mikktspace.c", threads): one worker until a program asks for more, as
+    /// with mikktspace.c; counts of 1 or less mean the calling thread alone.
+    #[test]
+    fn calls_use_one_worker_until_asked_and_counts_below_one_mean_one() {
+        assert_eq!(THREADS.load(Ordering::Relaxed), 1, "the default");
+        for (asked, used) in [(4, 4), (0, 1), (-3, 1), (i32::MAX, i32::MAX as u32), (1, 1)] {
+            tbasis_mikktspace_set_threads(asked);
+            assert_eq!(THREADS.load(Ordering::Relaxed), used, "asked for {asked}");
+        }
+    }
+}
