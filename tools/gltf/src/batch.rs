@@ -120,15 +120,11 @@ impl InOrder {
 
     /// Hands `emit` the lines of the done files that no unfinished file precedes, in order.
     fn print_ready(&mut self, mut emit: impl FnMut(Line)) {
-        while let Some(slot) = self.slots.get_mut(self.next) {
-            let Slot::Done(line) = std::mem::replace(slot, Slot::Printed) else {
-                *slot = Slot::Pending;
-                break;
-            };
-            self.next += 1;
-            if let Some(line) = line {
+        while self.ready() {
+            if let Slot::Done(Some(line)) = std::mem::replace(&mut self.slots[self.next], Slot::Printed) {
                 emit(line);
             }
+            self.next += 1;
         }
     }
 }
