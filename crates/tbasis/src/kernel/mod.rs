@@ -27,5 +27,6 @@ pub(crate) mod sums;
 #[cfg(test)]
 pub(crate) mod test_rng;
 pub(crate) mod vector;
+pub(crate) mod vertex_sums;
 #[allow(unsafe_code)]
 pub(crate) mod views;

@@ -5,33 +5,13 @@
 
 use core::ops::Range;
 
-use glam::Vec3;
-
 use crate::kernel::error::Error;
 use crate::kernel::mesh::{Mesh, Output, OutputPart};
 use crate::kernel::options::DegeneratePolicy;
 use crate::kernel::parallel;
 use crate::kernel::report::Report;
+pub use crate::kernel::vertex_sums::VertexSums;
 use crate::kernel::views::strided::StridedMut;
-
-/// Per-vertex running sums.
-///
-/// Policy LEGACY: `primary` is the listing's `tan1` (sum of dP/du) and `secondary` its `tan2`
-/// (sum of dP/dv). Other policies: `primary` sums the tangents of right-handed corners and
-/// `secondary` those of left-handed corners, `weight` the total weight of both; once a vertex is
-/// resolved, `primary` holds its unit tangent and `weight` its handedness ([`Self::keep_frame`]).
-/// For the per-corner output every vertex keeps its frame that way, and a mirror-fold vertex
-/// flagged [`flag::SIDE_FRAME`] keeps in `secondary` the unit tangent of its other side.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct VertexSums {
-    /// See the type's description.
-    pub primary: [f32; 3],
-    /// See the type's description.
-    pub weight: f32,
-    /// See the type's description.
-    pub secondary: [f32; 3],
-}
 
 /// Per-vertex flag bits.
 pub mod flag {
@@ -54,29 +34,6 @@ pub mod flag {
     /// mirror fold the vertex takes that side's frame unless the other side's sum is more than
     /// twice as long ([`crate::kernel::fold`]).
     pub(crate) const FIRST_LEFT: u8 = 128;
-}
-
-impl VertexSums {
-    /// Keeps a resolved frame in place of the sums: `primary` = tangent, `weight` = `w`.
-    #[inline(always)]
-    pub fn keep_frame(&mut self, tangent: Vec3, w: f32) {
-        self.primary = tangent.to_array();
-        self.weight = w;
-    }
-
-    /// The frame [`Self::keep_frame`] kept, as written out: `x, y, z, w`.
-    #[inline(always)]
-    pub fn kept_frame(&self) -> [f32; 4] {
-        let [x, y, z] = self.primary;
-        [x, y, z, self.weight]
-    }
-
-    /// The other side's frame a [`flag::SIDE_FRAME`] vertex keeps, as written out.
-    #[inline(always)]
-    pub fn kept_side_frame(&self) -> [f32; 4] {
-        let [x, y, z] = self.secondary;
-        [x, y, z, -self.weight]
-    }
 }
 
 /// Bytes a per-vertex call with `policy` needs besides the sums and flags: policy INHERIT's

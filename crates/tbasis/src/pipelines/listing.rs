@@ -12,7 +12,7 @@
 
 use core::ops::Range;
 
-use glam::{Vec2, Vec3, Vec3A, Vec4};
+use glam::{Vec2, Vec3, Vec3A};
 
 use crate::kernel::error::Error;
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES, PREFETCH_TRIANGLES};
@@ -205,12 +205,12 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
             scratch,
         } = self;
         let vertex_count = listing.mesh.vertex_count();
-        let (first, len) = (scratch.first, scratch.flags.len());
-        let (sums, flags) = (&mut scratch.sums[..len], &mut scratch.flags[..len]);
+        let (first, len) = (scratch.first, scratch.sums.len());
+        let sums = &mut *scratch.sums;
         if first == 0 && len == vertex_count {
-            listing.sweep(triangles, sums, flags, corners, Some)
+            listing.sweep(triangles, sums, corners, Some, false)
         } else {
-            listing.sweep(triangles, sums, flags, corners, move |v| slot_in(v, first, len))
+            listing.sweep(triangles, sums, corners, move |v| slot_in(v, first, len), true)
         }
     }
 }
@@ -248,23 +248,21 @@ fn add_kept(mesh: &Mesh, first: usize, kept: &[Vec<Solved>], scratch: &mut Scrat
                     Vec3A::from_array(solved.tdir),
                     solved.orientation,
                 );
-                add_terms(&mut scratch.sums[slot], &mut scratch.flags[slot], terms);
+                add_terms(&mut scratch.sums[slot], terms);
             }
         }
     }
 }
 
-/// Adds one triangle's terms (`sdir`, `tdir`, orientation flag) to one of its vertices.
+/// Adds one triangle's terms (`sdir`, `tdir`, orientation flag) to one of its vertices: `sdir`
+/// to `tan1` with the flags in the bits of the unused `weight` beside it, which [`resolve`] moves
+/// to the vertex's flags.
 #[inline(always)]
-fn add_terms(vertex: &mut VertexSums, flags: &mut u8, (sdir, tdir, orientation): (Vec3A, Vec3A, u8)) {
-    // `tan1` and the unused `weight` beside it in one 4-lane add (`weight` stays +0).
-    let [x, y, z] = vertex.primary;
-    let tan1 = Vec4::new(x, y, z, vertex.weight) + sdir.extend(0.0);
-    (vertex.primary, vertex.weight) = (tan1.truncate().to_array(), tan1.w);
+fn add_terms(vertex: &mut VertexSums, (sdir, tdir, orientation): (Vec3A, Vec3A, u8)) {
+    simd::add_and_mark(vertex, sdir, flag::REFERENCED | orientation);
     for (sum, term) in vertex.secondary.iter_mut().zip(tdir.to_array()) {
         *sum += term;
     }
-    *flags |= flag::REFERENCED | orientation;
 }
 
 impl<'m> Listing<'m> {
@@ -278,19 +276,24 @@ impl<'m> Listing<'m> {
         })
     }
 
-    /// `triangles` in order; `slot(v)` is where vertex `v` sits in `sums` and `flags`, if there.
+    /// `triangles` in order; `slot(v)` is where vertex `v` sits in `sums`, if there. A worker that
+    /// skips most triangles (those without a corner in its range) asks for their indices ahead
+    /// (`prefetch`), so as not to wait on memory; one that owns every vertex reads them in a
+    /// stream, where the request only costs time.
     #[inline(always)]
     fn sweep(
         &self,
         triangles: Range<usize>,
         sums: &mut [VertexSums],
-        flags: &mut [u8],
         corners: impl Fn(usize) -> [usize; 3],
         slot: impl Fn(usize) -> Option<usize>,
+        prefetch: bool,
     ) -> Result<Report, Error> {
         let mut report = Report::default();
         for a in triangles {
-            self.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
+            if prefetch {
+                self.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
+            }
             let [i1, i2, i3] = self.mesh.checked(corners(a))?;
             if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
                 continue;
@@ -301,7 +304,7 @@ impl<'m> Listing<'m> {
             }
             for v in [i1, i2, i3] {
                 if let Some(slot) = slot(v) {
-                    add_terms(&mut sums[slot], &mut flags[slot], terms);
+                    add_terms(&mut sums[slot], terms);
                 }
             }
         }
@@ -391,7 +394,8 @@ fn side(det: f32) -> u8 {
 
 /// Second loop of the listing: `T' = normalize(t - n * dot(n, t))`,
 /// `w = dot(cross(n, t), tan2) < 0 ? -1 : 1`. Without an `output` (the per-corner output) each
-/// vertex keeps its frame in its sums instead.
+/// vertex keeps its frame in its sums instead. Also moves each vertex's flags from its sums
+/// ([`add_terms`]) to its flags.
 #[inline(always)]
 pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut OutputPart>) {
     let vertices = scratch.first..scratch.first + scratch.sums.len();
@@ -400,9 +404,10 @@ pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut Outpu
     // Every NaN the sums hold is the default one: the normals' are made the same.
     let nan = default_nan();
     if let (Some(normals), Some(tangents)) = (packed_normals, packed_tangents) {
-        return resolve_packed(normals, scratch.sums, tangents, nan);
+        return resolve_packed(normals, scratch.sums, scratch.flags, tangents, nan);
     }
-    for (a, sums) in vertices.zip(scratch.sums.iter_mut()) {
+    for ((a, sums), flags) in vertices.zip(scratch.sums.iter_mut()).zip(scratch.flags.iter_mut()) {
+        *flags |= simd::marks(sums);
         let n = Vec3::from_array(canonical_nan(mesh.normals.get(a), nan));
         let (tangent, w) = frame(n, Vec3::from_array(sums.primary), Vec3::from_array(sums.secondary));
         match output.as_deref_mut() {
@@ -415,13 +420,17 @@ pub fn resolve(mesh: &Mesh, scratch: &mut Scratch, mut output: Option<&mut Outpu
 /// [`resolve`] from packed normals into packed tangents, [`LANES`] vertices at a time in SIMD
 /// lanes (the same operations on every lane, so the same bits).
 #[inline(always)]
-fn resolve_packed(normals: &[[f32; 3]], sums: &[VertexSums], tangents: &mut [[f32; 4]], nan: f32) {
-    debug_assert!(normals.len() == sums.len() && tangents.len() >= sums.len());
+fn resolve_packed(normals: &[[f32; 3]], sums: &[VertexSums], flags: &mut [u8], tangents: &mut [[f32; 4]], nan: f32) {
+    debug_assert!(normals.len() == sums.len() && flags.len() == sums.len() && tangents.len() >= sums.len());
     let (mut n, mut tan1, mut tan2) = ([[0.0; LANES]; 3], [[0.0; LANES]; 3], [[0.0; LANES]; 3]);
     let mut frames = [[0.0; LANES]; 4];
-    let batches = normals.chunks(LANES).zip(sums.chunks(LANES));
-    for ((normals, sums), tangents) in batches.zip(tangents.chunks_mut(LANES)) {
-        for (i, (normal, sums)) in normals.iter().zip(sums).enumerate() {
+    let batches = normals
+        .chunks(LANES)
+        .zip(sums.chunks(LANES))
+        .zip(flags.chunks_mut(LANES));
+    for (((normals, sums), flags), tangents) in batches.zip(tangents.chunks_mut(LANES)) {
+        for (i, ((normal, sums), flags)) in normals.iter().zip(sums).zip(flags).enumerate() {
+            *flags |= simd::marks(sums);
             set_lane3(&mut n, i, *normal);
             set_lane3(&mut tan1, i, sums.primary);
             set_lane3(&mut tan2, i, sums.secondary);
@@ -588,6 +597,46 @@ mod tests {
     /// Every triangle with a corner in each third of the vertices: three workers solve ranges of
     /// triangles apart (two keep their terms), with the bits and report of one, per vertex and
     /// per corner, including an index out of range in a kept range.
+    /// The first loop's adds, with the flags in `weight`'s bits: `tan1` and `tan2` get the
+    /// listing's sums and the flags all survive, also where subnormals flush to zero (bits alone
+    /// would make a subnormal `weight`).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_first_loop_keeps_the_sums_and_every_flag_where_subnormals_flush() {
+        use crate::kernel::simd::tests::{with_mode, FLUSH_SUBNORMALS};
+        let terms = [
+            ([1.5f32, -2.25, 3e-3], [0.5f32, 1e-3, -4.0], flag::POSITIVE_UV),
+            ([0.1, 7.0, -3e-3], [-0.25, 2.0, 1e30], 0),
+            ([-1.6, 1e30, 0.5], [3.0, -1e-3, 0.125], flag::NEGATIVE_UV),
+        ];
+        let listing_sum = |terms: [[f32; 3]; 3]| {
+            terms.iter().fold([0.0f32; 3], |sum, term| {
+                [sum[0] + term[0], sum[1] + term[1], sum[2] + term[2]]
+            })
+        };
+        let (tan1, tan2) = (listing_sum(terms.map(|t| t.0)), listing_sum(terms.map(|t| t.1)));
+        for mode in [0, FLUSH_SUBNORMALS] {
+            let sums = with_mode(mode, || {
+                let mut sums = VertexSums::default();
+                for (sdir, tdir, orientation) in terms {
+                    add_terms(
+                        &mut sums,
+                        (Vec3A::from_array(sdir), Vec3A::from_array(tdir), orientation),
+                    );
+                }
+                sums
+            });
+            assert_eq!(sums.primary.map(f32::to_bits), tan1.map(f32::to_bits), "mode {mode:#x}");
+            assert_eq!(
+                sums.secondary.map(f32::to_bits),
+                tan2.map(f32::to_bits),
+                "mode {mode:#x}"
+            );
+            let all = flag::REFERENCED | flag::POSITIVE_UV | flag::NEGATIVE_UV;
+            assert_eq!(simd::marks(&sums), all, "mode {mode:#x}");
+        }
+    }
+
     #[test]
     fn three_workers_solving_apart_give_the_bits_of_one() {
         let third = 300;
