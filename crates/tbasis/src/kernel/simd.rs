@@ -110,27 +110,27 @@ const MARKED: u32 = 0x3f80_0000;
 
 /// Adds `term`'s x, y and z to `sums.primary` and ORs `bits` into the bits of `sums.weight`, in
 /// one 16-byte load, add and store. The listing's first loop keeps a vertex's flags there rather
-/// than in an array of their own, whose read-modify-write per corner cost about 7% of a LEGACY
-/// call on a large mesh. LLVM splits a 4-lane add with an integer lane into three stores, so the
-/// lanes are written out here: x, y and z are three IEEE adds, as in the listing; `weight`, a
-/// normal number once marked ([`MARKED`]), adds +0 and keeps its bits.
+/// than in an array of their own, which cost a second read-modify-write per corner (README,
+/// "Speed"). LLVM splits a 4-lane add with an integer lane into three stores, so the lanes are
+/// written out here: x, y and z are three IEEE adds, as in the listing; `weight`, a normal number
+/// once marked ([`MARKED`]), adds +0 and keeps its bits.
 #[inline(always)]
 pub(crate) fn add_and_mark(sums: &mut VertexSums, term: glam::Vec3A, bits: u8) {
     let marks = MARKED | u32::from(bits);
     #[cfg(target_arch = "x86_64")]
     {
         use core::arch::x86_64::{
-            __m128, _mm_add_ps, _mm_castsi128_ps, _mm_loadu_ps, _mm_or_ps, _mm_set_epi32, _mm_storeu_ps,
+            _mm_add_ps, _mm_castsi128_ps, _mm_loadu_ps, _mm_or_ps, _mm_set_epi32, _mm_setr_ps, _mm_storeu_ps,
         };
         const _: () =
             assert!(core::mem::offset_of!(VertexSums, primary) == 0 && core::mem::offset_of!(VertexSums, weight) == 12);
         let first = core::ptr::from_mut(sums).cast::<f32>();
-        let term = __m128::from(term.extend(0.0));
+        let [x, y, z] = term.to_array();
         // SAFETY: SSE2 is part of x86-64; `VertexSums` is `repr(C)` with `primary` then `weight`
         // in its first 16 bytes (asserted above), all `f32`, so the unaligned 16-byte load and
         // store stay inside the one exclusive borrow, and any bits are a valid `f32`.
         unsafe {
-            let sum = _mm_add_ps(_mm_loadu_ps(first), term);
+            let sum = _mm_add_ps(_mm_loadu_ps(first), _mm_setr_ps(x, y, z, 0.0));
             _mm_storeu_ps(
                 first,
                 _mm_or_ps(sum, _mm_castsi128_ps(_mm_set_epi32(marks as i32, 0, 0, 0))),
@@ -176,24 +176,16 @@ pub(crate) mod tests {
         paths
     }
 
-    /// MXCSR's flush-to-zero and denormals-are-zero bits: the mode an engine may set.
-    #[cfg(target_arch = "x86_64")]
-    pub(crate) const FLUSH_SUBNORMALS: u32 = 0x8040;
-
-    /// `run` with the floating-point mode bits `mode` set in MXCSR on this thread.
-    #[cfg(target_arch = "x86_64")]
-    pub(crate) fn with_mode<R>(mode: u32, run: impl FnOnce() -> R) -> R {
-        let mut old = 0u32;
-        // SAFETY: stores this thread's MXCSR into `old`.
-        unsafe { core::arch::asm!("stmxcsr [{}]", in(reg) &mut old, options(nostack)) };
-        let new = old | mode;
-        // SAFETY: MXCSR is this thread's; the mode bits change how the thread's floating-point
-        // operations round, nothing else, until the old value is loaded back below.
-        unsafe { core::arch::asm!("ldmxcsr [{}]", in(reg) &new, options(nostack)) };
-        let result = run();
-        // SAFETY: as above, the value the thread had.
-        unsafe { core::arch::asm!("ldmxcsr [{}]", in(reg) &old, options(nostack)) };
-        result
+    /// Every marked `weight` is a normal number that adding +0 leaves as it is, so no rounding
+    /// mode or flushing of subnormals can change the flags in it.
+    #[test]
+    fn every_marked_weight_is_normal_and_keeps_its_bits_when_zero_is_added() {
+        for bits in 0..=u8::MAX {
+            let weight = f32::from_bits(super::MARKED | u32::from(bits));
+            assert!(weight.is_normal(), "flags {bits:#x}");
+            let added = core::hint::black_box(weight) + core::hint::black_box(0.0f32);
+            assert_eq!(added.to_bits(), weight.to_bits(), "flags {bits:#x}");
+        }
     }
 
     /// `run` with [`Path::best`] pinned to `path` on this thread.

@@ -8,8 +8,8 @@ use glam::Vec3;
 /// Per-vertex running sums.
 ///
 /// Policy LEGACY: `primary` is the listing's `tan1` (sum of dP/du) and `secondary` its `tan2`
-/// (sum of dP/dv); until the second loop `weight` holds the vertex's flags in its bits
-/// ([`crate::kernel::simd::add_and_mark`]). Other policies: `primary` sums the tangents of
+/// (sum of dP/dv); from the first loop on `weight` holds the vertex's flags in its bits
+/// ([`crate::kernel::simd::add_and_mark`]), until the vertex keeps its frame. Other policies: `primary` sums the tangents of
 /// right-handed corners and `secondary` those of left-handed corners, `weight` the total weight of
 /// both; once a vertex is resolved, `primary` holds its unit tangent and `weight` its handedness
 /// ([`Self::keep_frame`]). For the per-corner output every vertex keeps its frame that way, and a
