@@ -762,7 +762,7 @@ fn consecutive_calls(args: &[String]) -> Result<(), String> {
     let config = named(&configs, name, &usage())?;
     let filter = args.get(2);
     println!("{}; load average {}", machine(), load_average());
-    let builders: [(&str, SceneBuilder); 2] = [("torus", || Ok(torus())), ("asset", asset)];
+    let builders: [(&str, SceneBuilder); 3] = [("torus", || Ok(torus())), ("asset", asset), ("cube", || Ok(cube()))];
     for (what, build) in builders {
         if filter.is_some_and(|f| !what.contains(f.as_str())) {
             continue;

@@ -174,7 +174,8 @@ fn unindexed_corners(t: usize) -> [usize; 3] {
 
 #[inline(always)]
 fn indexed_corners<T: Element + Into<u32>>(view: Strided<T>, t: usize) -> [usize; 3] {
-    [0, 1, 2].map(|k| view.get(3 * t + k).into() as usize)
+    let [a, b, c] = view.get_three([3 * t, 3 * t + 1, 3 * t + 2]);
+    [a.into() as usize, b.into() as usize, c.into() as usize]
 }
 
 /// A triangle mesh: per-vertex attributes as strided views, and its triangles.

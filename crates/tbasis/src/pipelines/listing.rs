@@ -327,8 +327,10 @@ impl<'m> Listing<'m> {
     #[inline(always)]
     fn solve(&self, i1: usize, i2: usize, i3: usize) -> (Vec3A, Vec3A, u8) {
         let positions = self.mesh.positions;
-        let [p1, p2, p3] = [i1, i2, i3].map(|v| Vec3A::from_array(positions.get(v)));
-        let [w1, w2, w3] = [i1, i2, i3].map(|v| Vec2::from_array(self.texcoords.get(v)));
+        let [p1, p2, p3] = positions.get_three([i1, i2, i3]);
+        let [p1, p2, p3] = [Vec3A::from_array(p1), Vec3A::from_array(p2), Vec3A::from_array(p3)];
+        let [w1, w2, w3] = self.texcoords.get_three([i1, i2, i3]);
+        let [w1, w2, w3] = [Vec2::from_array(w1), Vec2::from_array(w2), Vec2::from_array(w3)];
         let (e1, e2) = (p2 - p1, p3 - p1);
         let (s1, s2) = (w2.x - w1.x, w3.x - w1.x);
         let (t1, t2) = ((w2.y - w1.y) * self.v_sign, (w3.y - w1.y) * self.v_sign);
@@ -353,10 +355,10 @@ impl<'m> Listing<'m> {
 /// default NaN. Where two different NaNs meet, which one an operation passes on depends on the
 /// operand order, which the compiler may choose differently for each SIMD path. The common case's
 /// inputs are finite, so its NaNs are the default one already; with these and the normals'
-/// ([`canonical_nan`]) made the same, no path can differ from another in a bit. Out of line: it
-/// is rare, and the loop stays small.
-#[cold]
-#[inline(never)]
+/// ([`canonical_nan`]) made the same, no path can differ from another in a bit. Inlined, but
+/// marked rare: a call would return its vectors through memory, and the common case's terms
+/// would then go through that memory too.
+#[inline(always)]
 fn special_triangle(
     det: f32,
     sdir: Vec3A,
@@ -364,12 +366,18 @@ fn special_triangle(
     [e1, e2]: [Vec3A; 2],
     uv_edges: [f32; 4],
 ) -> (Vec3A, Vec3A, u8) {
+    rare();
     let finite = e1.is_finite() && e2.is_finite() && uv_edges.iter().all(|x| x.is_finite());
     let orientation = if det == 0.0 || !finite { 0 } else { side(det) };
     let nan = default_nan();
     let [sdir, tdir] = [sdir, tdir].map(|v| Vec3A::from_array(canonical_nan(v.to_array(), nan)));
     (sdir, tdir, orientation)
 }
+
+/// Marks the path that calls it as rare, so that the compiler lays it out of the loop.
+#[cold]
+#[inline(never)]
+fn rare() {}
 
 /// The NaN this CPU's arithmetic produces (`0 / 0`), not a constant the compiler would pick.
 fn default_nan() -> f32 {

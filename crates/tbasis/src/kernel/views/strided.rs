@@ -315,6 +315,18 @@ impl<'a, T: Element> Strided<'a, T> {
         unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() }
     }
 
+    /// Elements `a`, `b` and `c` (a triangle's), with one bounds check, on the largest: a loop
+    /// reading triangles then compares once per view and triangle, not once per element. Panics
+    /// when an index is `>= len`.
+    #[inline(always)]
+    pub(crate) fn get_three(&self, [a, b, c]: [usize; 3]) -> [T; 3] {
+        assert!(a.max(b).max(c) < self.len, "strided read out of bounds");
+        // SAFETY: each index is below len, and the constructor's contract covers every element
+        // below len.
+        let read = |i: usize| unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() };
+        [read(a), read(b), read(c)]
+    }
+
     /// Asks the CPU to bring element `i` into its cache ahead of a read (nothing when `i` is past
     /// the end): a loop that streams through a view can then wait less for memory.
     #[inline(always)]
@@ -743,6 +755,22 @@ mod tests {
         }
         let view = Strided::<[f32; 3]>::from_bytes(&bytes[1..], 17, 3).unwrap();
         assert_eq!(view.get(2), [2.0, 1.5, -2.0]);
+    }
+
+    /// Reading several elements at once checks every index: one past the end panics wherever it
+    /// sits in the list, and the others read what `get` reads.
+    #[test]
+    fn reading_several_elements_checks_each_index() {
+        let mut bytes = [0u8; 40];
+        for (i, chunk) in bytes.chunks_exact_mut(4).enumerate() {
+            chunk.copy_from_slice(&(i as u32 * 7).to_ne_bytes());
+        }
+        let view = Strided::<u32>::from_bytes(&bytes[4..], 8, 4).unwrap();
+        assert_eq!(view.get_three([3, 0, 2]), [3, 0, 2].map(|i| view.get(i)));
+        for bad in [[4, 0, 1], [0, 4, 1], [0, 1, 4], [usize::MAX, 0, 0]] {
+            let read = std::panic::catch_unwind(|| view.get_three(bad));
+            assert!(read.is_err(), "{bad:?} read past the end");
+        }
     }
 
     /// A view is read as a slice only when its elements sit packed at an address aligned for

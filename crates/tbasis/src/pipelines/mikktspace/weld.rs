@@ -265,6 +265,94 @@ fn weld_cells<'m>(
     threads: u32,
     corner_count: usize,
     locate: &(dyn Fn(usize) -> (u32, u32) + Sync),
+    selection: (&[bool; GRID_CELLS], usize),
+    memory: CellMemory<'m>,
+) -> Option<&'m [[u32; 3]]> {
+    if corner_count < FEW_CORNERS && !count_always() {
+        sort_into_cells(attributes, corner_count, locate, selection, memory)
+    } else {
+        count_into_cells(attributes, threads, corner_count, locate, selection, memory)
+    }
+}
+
+/// Below this many corners, [`weld_cells`] sorts the corners by cell rather than counting them
+/// into every one of the [`GRID_CELLS`] cells, whose passes would take most of a small mesh's
+/// time. Fuzzing builds (`cfg(fuzzing)`) lower it, so that the fuzzer's small meshes take both
+/// ways.
+pub(super) const FEW_CORNERS: usize = if cfg!(fuzzing) { 24 } else { GRID_CELLS / 16 };
+
+#[cfg(test)]
+std::thread_local! {
+    /// Set by tests to take [`count_into_cells`] on meshes of any size, on this thread.
+    pub(super) static COUNT_ALWAYS: core::cell::Cell<bool> = const { core::cell::Cell::new(false) };
+}
+
+/// Whether a test asked for [`count_into_cells`] on every mesh.
+fn count_always() -> bool {
+    #[cfg(test)]
+    return COUNT_ALWAYS.with(core::cell::Cell::get);
+    #[cfg(not(test))]
+    false
+}
+
+/// [`weld_cells`] by sorting (cell, corner) pairs, on one thread: the same entries, in the same
+/// order (cells in order, corners in order within each).
+fn sort_into_cells<'m>(
+    attributes: &Attributes,
+    corner_count: usize,
+    locate: &(dyn Fn(usize) -> (u32, u32) + Sync),
+    (selected, corner_limit): (&[bool; GRID_CELLS], usize),
+    memory: CellMemory<'m>,
+) -> Option<&'m [[u32; 3]]> {
+    let CellMemory {
+        hashes,
+        positions,
+        entries,
+        stack,
+        ..
+    } = memory;
+    // Each selected corner's entry, its cell in the representative's place for the sort.
+    let mut filled = 0;
+    for c in 0..corner_count {
+        let (cell, v) = locate(c);
+        let k = cell & !UNEQUAL;
+        if selected[k as usize] {
+            let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
+            entries[filled] = [c as u32, vertex, k];
+            filled += 1;
+        }
+    }
+    if filled > corner_limit {
+        return None;
+    }
+    let entries = &mut entries[..filled];
+    entries.sort_unstable_by_key(|&[corner, _, cell]| (cell, corner));
+    let equal = Equality {
+        attributes,
+        hashes: &*hashes,
+    };
+    let mut start = 0;
+    while start < filled {
+        let cell = entries[start][2];
+        let end = start + entries[start..].iter().take_while(|e| e[2] == cell).count();
+        for (position, entry) in positions[start..end].iter_mut().zip(&mut entries[start..end]) {
+            *position = attributes.position(locate(entry[0] as usize).1);
+            entry[2] = entry[0];
+        }
+        if end - start > 1 {
+            split_and_weld(&equal, &mut positions[start..end], &mut entries[start..end], stack);
+        }
+        start = end;
+    }
+    Some(entries)
+}
+
+/// [`weld_cells`] by counting the corners into the cells, ranges of cells on separate threads.
+fn count_into_cells<'m>(
+    attributes: &Attributes,
+    threads: u32,
+    corner_count: usize,
+    locate: &(dyn Fn(usize) -> (u32, u32) + Sync),
     (selected, corner_limit): (&[bool; GRID_CELLS], usize),
     memory: CellMemory<'m>,
 ) -> Option<&'m [[u32; 3]]> {
@@ -289,8 +377,11 @@ fn weld_cells<'m>(
     }
     let list = list.map(|(list, count)| &list[..count]);
     // A running total in a register: each cell's start does not wait on the store of the last.
+    // Each cell's cursor starts at its start (written here: a copy of 8 KiB is slow on some CPUs
+    // and costs a small mesh much of its time).
     let mut total = 0;
-    for start in &mut starts[1..] {
+    for (start, cursor) in starts[1..].iter_mut().zip(cursors.iter_mut()) {
+        *cursor = total;
         total += *start;
         *start = total;
     }
@@ -298,7 +389,6 @@ fn weld_cells<'m>(
     if filled > corner_limit {
         return None;
     }
-    cursors.copy_from_slice(&starts[..GRID_CELLS]);
 
     // Each worker gathers its cells' corners (in corner order within a cell), then splits and
     // welds every cell.

@@ -201,6 +201,35 @@ fn a_last_run_called_trivial_is_one_edge_or_its_two_sides() {
     );
 }
 
+/// `run` with the weld counting corners into cells whatever their number.
+fn counting_into_cells<R>(run: impl FnOnce() -> R) -> R {
+    weld::COUNT_ALWAYS.with(|always| always.set(true));
+    let result = run();
+    weld::COUNT_ALWAYS.with(|always| always.set(false));
+    result
+}
+
+#[test]
+fn sorting_and_counting_corners_into_cells_weld_alike() {
+    let mut sorted = 0;
+    for_each_case(0xCE11, |round, case, attributes| {
+        sorted += usize::from(case.indices.len() < weld::FEW_CORNERS);
+        let weld = replayed(attributes, &case.indices);
+        assert_eq!(
+            weld,
+            counting_into_cells(|| replayed(attributes, &case.indices)),
+            "round {round}: the weld"
+        );
+        assert_eq!(
+            last_run_outcome(case, attributes),
+            counting_into_cells(|| last_run_outcome(case, attributes)),
+            "round {round}: the last run"
+        );
+    });
+    // Not vacuous: most cases are small enough to be sorted.
+    assert!(sorted > 1500, "{sorted} of 3000 sorted");
+}
+
 /// A grid of `width` by `strips` quads whose even strips are listed first, then the odd ones: with
 /// an odd `strips`, the second half of the triangles uses only vertices the first half used, as
 /// in FlightHelmet.cc1's primitives, so nearly every vertex has a corner late in the list.
