@@ -745,8 +745,9 @@ fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
 }
 
 /// `--calls COUNT CONFIGURATION [FILTER]`: one process calls the configuration the tables name
-/// CONFIGURATION `COUNT` times in a row on each large scene (or those whose name contains
-/// FILTER), after an untimed call, and prints each call's time in order, then their quartiles.
+/// CONFIGURATION `COUNT` times in a row on the torus, the asset and the cube (or those whose name
+/// contains FILTER), after an untimed call, and prints each call's time in order, then their
+/// quartiles.
 /// The tables give medians over rounds; this shows how one configuration's times move within a
 /// process. Writes nothing.
 fn consecutive_calls(args: &[String]) -> Result<(), String> {
