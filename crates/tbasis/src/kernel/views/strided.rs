@@ -311,8 +311,8 @@ impl<'a, T: Element> Strided<'a, T> {
     #[inline(always)]
     pub fn get(&self, i: usize) -> T {
         assert!(i < self.len, "strided read out of bounds");
-        // SAFETY: i < len and the constructor's contract covers every element below len.
-        unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() }
+        // SAFETY: i < len.
+        unsafe { self.read_unchecked(i) }
     }
 
     /// Elements `a`, `b` and `c` (a triangle's), with one bounds check, on the largest: a loop
@@ -321,10 +321,20 @@ impl<'a, T: Element> Strided<'a, T> {
     #[inline(always)]
     pub(crate) fn get_three(&self, [a, b, c]: [usize; 3]) -> [T; 3] {
         assert!(a.max(b).max(c) < self.len, "strided read out of bounds");
-        // SAFETY: each index is below len, and the constructor's contract covers every element
-        // below len.
-        let read = |i: usize| unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() };
-        [read(a), read(b), read(c)]
+        // SAFETY: each index is at most the largest, which is below len.
+        unsafe { [self.read_unchecked(a), self.read_unchecked(b), self.read_unchecked(c)] }
+    }
+
+    /// Element `i`, unchecked.
+    ///
+    /// # Safety
+    /// `i < len`. The constructor's contract covers every element below len: their bytes lie in
+    /// one allocation of at least `span_bytes(len, stride, size)` bytes, so `i * stride` neither
+    /// overflows nor leaves it.
+    #[inline(always)]
+    unsafe fn read_unchecked(&self, i: usize) -> T {
+        // SAFETY: the caller's `i < len` and the constructor's contract (above).
+        unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() }
     }
 
     /// Asks the CPU to bring element `i` into its cache ahead of a read (nothing when `i` is past

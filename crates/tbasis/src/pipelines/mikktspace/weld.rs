@@ -255,8 +255,18 @@ struct CellMemory<'m> {
     listed: Option<&'m mut [u32]>,
 }
 
+/// The vertex of a corner's entry: [`NONE`] where its attributes hold a `NaN` (the cell is marked
+/// [`UNEQUAL`]), so that it equals nothing.
+fn entry_vertex(cell: u32, vertex: u32) -> u32 {
+    if cell & UNEQUAL != 0 {
+        NONE
+    } else {
+        vertex
+    }
+}
+
 /// Step 3 of the weld: each selected cell's corners gathered in corner order, then split and
-/// welded (`MergeVertsFast`), ranges of cells on separate threads. `locate(c)` gives corner `c`'s
+/// welded (`MergeVertsFast`); on ranges of cells on separate threads where the corners are many. `locate(c)` gives corner `c`'s
 /// cell (or'd with [`UNEQUAL`]) and vertex. Returns (corner, vertex or [`NONE`], representative
 /// corner) of the corners those cells hold; `None` when they pass `corner_limit` (nothing
 /// welded).
@@ -269,7 +279,18 @@ fn weld_cells<'m>(
     memory: CellMemory<'m>,
 ) -> Option<&'m [[u32; 3]]> {
     if corner_count < FEW_CORNERS && !count_always() {
-        sort_into_cells(attributes, corner_count, locate, selection, memory)
+        let CellMemory {
+            hashes,
+            positions,
+            entries,
+            stack,
+            ..
+        } = memory;
+        let equal = Equality {
+            attributes,
+            hashes: &*hashes,
+        };
+        sort_into_cells(&equal, corner_count, locate, selection, (positions, entries, stack))
     } else {
         count_into_cells(attributes, threads, corner_count, locate, selection, memory)
     }
@@ -298,27 +319,19 @@ fn count_always() -> bool {
 /// [`weld_cells`] by sorting (cell, corner) pairs, on one thread: the same entries, in the same
 /// order (cells in order, corners in order within each).
 fn sort_into_cells<'m>(
-    attributes: &Attributes,
+    equal: &Equality,
     corner_count: usize,
     locate: &(dyn Fn(usize) -> (u32, u32) + Sync),
     (selected, corner_limit): (&[bool; GRID_CELLS], usize),
-    memory: CellMemory<'m>,
+    (positions, entries, stack): (&mut [Vec3], &'m mut [[u32; 3]], &mut [[u32; 2]]),
 ) -> Option<&'m [[u32; 3]]> {
-    let CellMemory {
-        hashes,
-        positions,
-        entries,
-        stack,
-        ..
-    } = memory;
     // Each selected corner's entry, its cell in the representative's place for the sort.
     let mut filled = 0;
     for c in 0..corner_count {
         let (cell, v) = locate(c);
         let k = cell & !UNEQUAL;
         if selected[k as usize] {
-            let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
-            entries[filled] = [c as u32, vertex, k];
+            entries[filled] = [c as u32, entry_vertex(cell, v), k];
             filled += 1;
         }
     }
@@ -327,21 +340,15 @@ fn sort_into_cells<'m>(
     }
     let entries = &mut entries[..filled];
     entries.sort_unstable_by_key(|&[corner, _, cell]| (cell, corner));
-    let equal = Equality {
-        attributes,
-        hashes: &*hashes,
-    };
     let mut start = 0;
     while start < filled {
         let cell = entries[start][2];
         let end = start + entries[start..].iter().take_while(|e| e[2] == cell).count();
         for (position, entry) in positions[start..end].iter_mut().zip(&mut entries[start..end]) {
-            *position = attributes.position(locate(entry[0] as usize).1);
+            *position = equal.attributes.position(locate(entry[0] as usize).1);
             entry[2] = entry[0];
         }
-        if end - start > 1 {
-            split_and_weld(&equal, &mut positions[start..end], &mut entries[start..end], stack);
-        }
+        split_and_weld(equal, &mut positions[start..end], &mut entries[start..end], stack);
         start = end;
     }
     Some(entries)
@@ -377,8 +384,7 @@ fn count_into_cells<'m>(
     }
     let list = list.map(|(list, count)| &list[..count]);
     // A running total in a register: each cell's start does not wait on the store of the last.
-    // Each cell's cursor starts at its start (written here: a copy of 8 KiB is slow on some CPUs
-    // and costs a small mesh much of its time).
+    // Each cell's cursor starts at its start, written here rather than copied after (8 KiB).
     let mut total = 0;
     for (start, cursor) in starts[1..].iter_mut().zip(cursors.iter_mut()) {
         *cursor = total;
@@ -422,18 +428,15 @@ fn count_into_cells<'m>(
                 let at = *cursor as usize - first;
                 *cursor += 1;
                 positions[at] = attributes.position(v);
-                let vertex = if cell & UNEQUAL != 0 { NONE } else { v };
-                entries[at] = [c as u32, vertex, c as u32];
+                entries[at] = [c as u32, entry_vertex(cell, v), c as u32];
             }
+            let equal = Equality {
+                attributes,
+                hashes: &*hashes,
+            };
             for k in owned {
                 let cell = starts[k] as usize - first..starts[k + 1] as usize - first;
-                if cell.len() > 1 {
-                    let equal = Equality {
-                        attributes,
-                        hashes: &*hashes,
-                    };
-                    split_and_weld(&equal, &mut positions[cell.clone()], &mut entries[cell], stack);
-                }
+                split_and_weld(&equal, &mut positions[cell.clone()], &mut entries[cell], stack);
             }
         },
     );
@@ -541,6 +544,10 @@ pub(crate) fn canonical_bits(x: f32) -> u32 {
 /// pending parts are disjoint and hold two entries or more, so with the partition's pairs the
 /// stack needs as many slots as the cell has entries).
 fn split_and_weld(equal: &Equality, positions: &mut [Vec3], entries: &mut [[u32; 3]], stack: &mut [[u32; 2]]) {
+    if entries.len() < 2 {
+        // Nothing to weld: a lone corner represents itself.
+        return;
+    }
     stack[0] = [0, entries.len() as u32 - 1];
     let mut top = 1;
     while top > 0 {
