@@ -266,10 +266,10 @@ fn entry_vertex(cell: u32, vertex: u32) -> u32 {
 }
 
 /// Step 3 of the weld: each selected cell's corners gathered in corner order, then split and
-/// welded (`MergeVertsFast`); on ranges of cells on separate threads where the corners are many. `locate(c)` gives corner `c`'s
-/// cell (or'd with [`UNEQUAL`]) and vertex. Returns (corner, vertex or [`NONE`], representative
-/// corner) of the corners those cells hold; `None` when they pass `corner_limit` (nothing
-/// welded).
+/// welded (`MergeVertsFast`); on ranges of cells on separate threads where the corners are many.
+/// `locate(c)` gives corner `c`'s cell (or'd with [`UNEQUAL`]) and vertex. Returns (corner, vertex
+/// or [`NONE`], representative corner) of the corners those cells hold; `None` when they pass
+/// `corner_limit` (nothing welded).
 fn weld_cells<'m>(
     attributes: &Attributes,
     threads: u32,
