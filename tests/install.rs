@@ -347,7 +347,7 @@ fn check_pkg_config(prefix: &Path, work: &Path) {
 /// (e) The C++ example against the installed header and shared library.
 fn check_cpp(prefix: &Path, work: &Path) {
     let lib = prefix.join("lib");
-    for standard in ["-std=c++11", "-std=c++17"] {
+    for standard in ["-std=c++11", "-std=c++14", "-std=c++17", "-std=c++20", "-std=c++23"] {
         let exe = work.join(format!("interleaved{standard}"));
         let mut command = Command::new("c++");
         command.arg(standard).args(WARNINGS);

@@ -98,3 +98,55 @@ fn without_a_face_of_three_or_four_vertices_nothing_is_called() {
     assert_eq!((ours.0, ours.1.len()), (false, 0));
     assert_eq!(ours, reference);
 }
+
+/// Faces of no vertex but the first and the last, which are one triangle each: `face_count`
+/// faces in all; records the faces of the set calls.
+struct FarFaces {
+    face_count: usize,
+    set: Vec<usize>,
+}
+
+impl tbasis::mikktspace::Geometry for FarFaces {
+    fn num_faces(&self) -> usize {
+        self.face_count
+    }
+    fn num_vertices_of_face(&self, face: usize) -> usize {
+        if face == 0 || face == self.face_count - 1 {
+            3
+        } else {
+            0
+        }
+    }
+    fn position(&self, face: usize, vert: usize) -> [f32; 3] {
+        [vert as f32 % 2.0, (vert / 2) as f32, face.min(1) as f32]
+    }
+    fn normal(&self, _: usize, _: usize) -> [f32; 3] {
+        [0.0, 0.0, 1.0]
+    }
+    fn tex_coord(&self, _: usize, vert: usize) -> [f32; 2] {
+        [vert as f32 % 2.0, (vert / 2) as f32]
+    }
+    fn set_tangent_encoded(&mut self, _: [f32; 4], face: usize, _: usize) {
+        self.set.push(face);
+    }
+}
+
+#[test]
+fn a_face_numbered_int_max_over_4_returns_false_with_no_call() {
+    // mikktspace.c numbers a face vertex `4 * face + vert` in an int: the largest face it can
+    // number is INT_MAX / 4 - 1, the last face of the first mesh.
+    let largest = (i32::MAX / 4 - 1) as usize;
+    let mut within = FarFaces {
+        face_count: largest + 1,
+        set: Vec::new(),
+    };
+    assert!(tbasis::mikktspace::generate_tangents(&mut within));
+    assert_eq!(within.set, [0, 0, 0, largest, largest, largest]);
+
+    let mut beyond = FarFaces {
+        face_count: largest + 2,
+        set: Vec::new(),
+    };
+    assert!(!tbasis::mikktspace::generate_tangents(&mut beyond));
+    assert!(beyond.set.is_empty(), "{:?}", &beyond.set[..beyond.set.len().min(6)]);
+}

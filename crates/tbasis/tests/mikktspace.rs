@@ -612,8 +612,8 @@ fn every_corpus_mesh_matches_mikktspace_c() {
 /// 1-30% of corners (NormalTangentTest 264 of 23,322; Blender's exporter ran its own port of
 /// MikkTSpace, whose rounding differs, and turns tiny components into exact zeros). What holds on
 /// every corner, for mikktspace.c as for this library: `w` is bit for bit the stored `w` (also on
-/// the `mikktspace-near` files), and the direction is within 0.03 degrees of the stored one (on
-/// `mikktspace-exact` files; `mikktspace-near` ones differ by up to 180 degrees where their
+/// the `mikktspace-near` files), and the direction is within [`STORED_ANGLE_DEG`] of the stored
+/// one (on `mikktspace-exact` files; `mikktspace-near` ones differ by up to 180 degrees where their
 /// exporter welded or re-split vertices). No vertex's corners split in those files.
 #[test]
 fn stored_tangents_agree_with_flip_v() {

@@ -15,8 +15,8 @@ use proptest::prelude::*;
 use proptest::sample::Index;
 use proptest::test_runner::Config;
 use tbasis::{
-    scratch_size, scratch_size_for, DegeneratePolicy, ErrorKind, Indices, Mesh, Method, Options, Output, Report,
-    Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
+    scratch_size, scratch_size_for, scratch_size_for_counts, DegeneratePolicy, ErrorKind, Indices, Mesh, Method,
+    Options, Output, Report, Strided, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
 };
 use tbasis_test_support::invariants::{check_invariants, unit_normal};
 use tbasis_test_support::run::generate_into;
@@ -1029,4 +1029,35 @@ fn zip3<A, B, C>(
     c: impl IntoIterator<Item = C>,
 ) -> Vec<(A, B, C)> {
     a.into_iter().zip(b).zip(c).map(|((a, b), c)| (a, b, c)).collect()
+}
+
+/// The README's "Memory": `29 V + 3` bytes, and policy INHERIT's adjacency on top, `2 V + C`
+/// entries of 4 bytes, or of 8 once `V` or `C` exceeds 2^32 - 1 (on 64-bit targets).
+#[test]
+fn scratch_sizes_follow_the_readme_formulas_with_narrow_and_wide_adjacency() {
+    let inherit = Options::default().with_policy(DegeneratePolicy::Inherit);
+    let skip = Options::default().with_policy(DegeneratePolicy::Skip);
+    let wide_count = u32::MAX as u64 + 1;
+    for (vertices, corners) in [
+        (4u64, 6u64),
+        (wide_count - 1, 3),
+        (3, wide_count - 1),
+        (wide_count, 3),
+        (3, wide_count),
+    ] {
+        let (Ok(v), Ok(c)) = (usize::try_from(vertices), usize::try_from(corners)) else {
+            continue;
+        };
+        let entry = if v.max(c) > u32::MAX as usize { 8 } else { 4 };
+        assert_eq!(
+            scratch_size_for_counts(&skip, v, c),
+            Some(29 * v + 3),
+            "{v} vertices, {c} corners"
+        );
+        assert_eq!(
+            scratch_size_for_counts(&inherit, v, c),
+            Some(29 * v + 3 + entry * (2 * v + c)),
+            "{v} vertices, {c} corners"
+        );
+    }
 }

@@ -313,13 +313,15 @@ fn quad_with_zero_indices(count: u64) -> Fixture {
 #[test]
 fn a_huge_accessor_without_data() {
     let (input, output) = folders("zeros");
-    // 2 TB of zeros.
-    let file = quad_with_zero_indices(1 << 40).write_gltf(&input, "zeros");
-    refused(
-        &file,
-        &output,
-        "accessor 3: 1099511627776 elements without a bufferView",
-    );
+    // One element past the limit of 16 Mi, and 2 TB of zeros.
+    for count in [(1u64 << 24) + 1, 1 << 40] {
+        let file = quad_with_zero_indices(count).write_gltf(&input, &format!("zeros-{count}"));
+        refused(
+            &file,
+            &output,
+            &format!("accessor 3: {count} elements without a bufferView"),
+        );
+    }
 }
 
 #[test]
