@@ -1037,26 +1037,28 @@ fn zip3<A, B, C>(
 fn scratch_sizes_follow_the_readme_formulas_with_narrow_and_wide_adjacency() {
     let inherit = Options::default().with_policy(DegeneratePolicy::Inherit);
     let skip = Options::default().with_policy(DegeneratePolicy::Skip);
-    let wide_count = u32::MAX as u64 + 1;
-    for (vertices, corners) in [
+    let wide_count = u64::from(u32::MAX) + 1;
+    for (v, c) in [
         (4u64, 6u64),
         (wide_count - 1, 3),
         (3, wide_count - 1),
         (wide_count, 3),
         (3, wide_count),
     ] {
-        let (Ok(v), Ok(c)) = (usize::try_from(vertices), usize::try_from(corners)) else {
+        let (Ok(vertices), Ok(corners)) = (usize::try_from(v), usize::try_from(c)) else {
             continue;
         };
-        let entry = if v.max(c) > u32::MAX as usize { 8 } else { 4 };
+        // In 64 bits, so that a size a 32-bit target cannot hold is `None` there.
+        let entry = if v.max(c) > u64::from(u32::MAX) { 8 } else { 4 };
+        let expected = |bytes: u64| usize::try_from(bytes).ok();
         assert_eq!(
-            scratch_size_for_counts(&skip, v, c),
-            Some(29 * v + 3),
+            scratch_size_for_counts(&skip, vertices, corners),
+            expected(29 * v + 3),
             "{v} vertices, {c} corners"
         );
         assert_eq!(
-            scratch_size_for_counts(&inherit, v, c),
-            Some(29 * v + 3 + entry * (2 * v + c)),
+            scratch_size_for_counts(&inherit, vertices, corners),
+            expected(29 * v + 3 + entry * (2 * v + c)),
             "{v} vertices, {c} corners"
         );
     }
