@@ -6,6 +6,7 @@
 #![cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
 
 use tbasis::{scratch_size_for, Options, Output, ScratchBuffer};
+use tbasis_test_support::needs;
 use tbasis_test_support::shapes::flat_grid;
 
 const MIB: usize = 1 << 20;
@@ -40,12 +41,7 @@ fn new_advised(before: &[(usize, usize)], len: usize) -> Vec<(usize, usize)> {
 
 #[test]
 fn scratch_of_32_mib_or_more_asks_for_huge_pages_and_smaller_does_not() {
-    if !std::path::Path::new("/sys/kernel/mm/transparent_hugepage").exists() {
-        let missing = "a kernel with transparent huge pages (/sys/kernel/mm/transparent_hugepage)";
-        if std::env::var_os("CI").is_some() {
-            panic!("missing: {missing}; CI must provide it");
-        }
-        eprintln!("huge pages: skipped: needs {missing}");
+    if !needs::TRANSPARENT_HUGE_PAGES.found_or_skip() {
         return;
     }
     let options = Options::mikktspace();

@@ -42,6 +42,8 @@ enum Probe {
     GltfValidator,
     /// mikktspace.c and mikktspace.h as the crate mikktspace-sys vendors them ([`mikktspace_c_dir`]).
     MikktspaceC,
+    /// A Linux kernel with transparent huge pages, which `madvise(MADV_HUGEPAGE)` needs.
+    TransparentHugePages,
 }
 
 pub const CORPUS: Need = Need { probe: Probe::Corpus };
@@ -75,6 +77,9 @@ pub const GLTF_VALIDATOR: Need = Need {
 
 pub const MIKKTSPACE_C: Need = Need {
     probe: Probe::MikktspaceC,
+};
+pub const TRANSPARENT_HUGE_PAGES: Need = Need {
+    probe: Probe::TransparentHugePages,
 };
 
 /// Where `.ci/run` installs the glTF Validator, below the repository root.
@@ -132,6 +137,8 @@ impl Need {
                 .then(|| "the AddressSanitizer and UBSan runtimes of cc (Debian: libasan8, libubsan1)".to_string()),
             Probe::PythonVenv => missing_python_venv(),
             Probe::GltfValidator => missing_gltf_validator(),
+            Probe::TransparentHugePages => (!Path::new("/sys/kernel/mm/transparent_hugepage").exists())
+                .then(|| "a kernel with transparent huge pages (/sys/kernel/mm/transparent_hugepage)".to_string()),
             Probe::MikktspaceC => mikktspace_c_dir().is_none().then(|| {
                 format!(
                     "mikktspace.c and mikktspace.h of the crate {MIKKTSPACE_SYS}, which `cargo metadata` \
