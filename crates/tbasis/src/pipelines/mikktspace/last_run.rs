@@ -19,8 +19,8 @@ use super::weld::{self, Wanted, WeldScratch};
 use super::NONE;
 use crate::kernel::vector::Packed;
 
-/// The share of corners the replayed cells may hold (1 in this many) before the full weld is the
-/// cheaper way to every index; up to [`REPLAY_FLOOR`] corners the replay costs little anyway.
+/// The share of corners the replayed cells may hold (1 in this many) before the replay of every
+/// cell is the cheaper way to every index; up to [`REPLAY_FLOOR`] corners the replay costs little anyway.
 /// Fuzzing builds (`cfg(fuzzing)`, set by cargo-fuzz) lower the floor and the probe, so that the
 /// fuzzer's small meshes take the probe and its narrowed replay too: every route must give the
 /// same bits.

@@ -37,7 +37,7 @@ use self::groups::Groups;
 use self::neighbors::EdgeScratch;
 use self::tspace::Directions;
 use self::tspace::Inputs;
-use self::weld::WeldScratch;
+use self::weld::{Wanted, WeldScratch};
 use crate::kernel::error::Error;
 use crate::kernel::memory::{bytes_of, Arena};
 use crate::kernel::mesh::{Mesh, Output, Target};
@@ -461,7 +461,7 @@ fn solve<S: tspace::Space>(
     let path = match trivial {
         Some(true) => WeldPath::ByValue,
         Some(false) => {
-            replay_for_last_run(attributes, threads, &mut weld_buffers)?;
+            replay_for_last_run(attributes, threads, &mut weld_buffers, packed)?;
             WeldPath::ReplayedForLastRun
         }
         None => WeldPath::ReplayedForAttributes,
@@ -804,16 +804,40 @@ fn last_run_is_trivial(
     ))
 }
 
-/// Where the last run can matter: replays the splitting to find every welded vertex's index,
-/// into `values` (the weld's numbering is the same either way).
-fn replay_for_last_run(attributes: &Attributes, threads: u32, b: &mut WeldBuffers) -> Result<(), Error> {
+/// Where the last run can matter: mikktspace.c's index for every welded vertex, into `values`.
+/// The weld by value's classes are the C's, and both number them in order of first use, so only
+/// the representatives are missing: the splitting is replayed on every cell from the welded
+/// vertices' attributes ([`weld::representatives`]), which reads each vertex once rather than
+/// every corner's.
+fn replay_for_last_run(
+    attributes: &Attributes,
+    threads: u32,
+    b: &mut WeldBuffers,
+    packed: &[Packed],
+) -> Result<(), Error> {
     let (vertex_count, corner_count) = (attributes.mesh.vertex_count(), b.welded.len());
-    for (c, slot) in b.welded.iter_mut().enumerate() {
-        *slot = attributes.mesh.indices.corner(c) as u32;
-    }
     let mut phase = Arena::Carve(&mut *b.phase);
-    let scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
-    weld::weld(attributes, threads, b.welded, b.source, b.values, scratch);
+    let mut scratch = WeldScratch::take(&mut phase, vertex_count, corner_count)?;
+    let every_cell = Wanted {
+        welded: &|_| true,
+        corner_limit: corner_count,
+    };
+    let welded_vertices = (&*b.welded, &b.source[..packed.len()], packed);
+    match weld::representatives(attributes, threads, welded_vertices, every_cell, &mut scratch) {
+        Some(found) => {
+            for &[c, _, first] in found {
+                b.values[b.welded[c as usize] as usize] = attributes.value_of(first as usize);
+            }
+        }
+        // Past a corner limit of every corner: unreachable. The weld of every corner gives the
+        // same indices, and stands here rather than a panic.
+        None => {
+            for (c, slot) in b.welded.iter_mut().enumerate() {
+                *slot = attributes.mesh.indices.corner(c) as u32;
+            }
+            weld::weld(attributes, threads, b.welded, b.source, b.values, scratch);
+        }
+    }
     Ok(())
 }
 
