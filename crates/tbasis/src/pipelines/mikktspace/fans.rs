@@ -1,12 +1,12 @@
 //! Groups and their tangents one welded vertex at a time (`BuildNeighborsFast`,
-//! `Build4RuleGroups`, `GenerateTSpaces`), where the last run of the edge sort cannot matter and
-//! no triangle takes its orientation from a group.
+//! `Build4RuleGroups`, `GenerateTSpaces`), where no triangle takes its orientation from a group.
 //!
 //! Everything that decides a group keeps to its welded vertex `v`:
 //! - the pairing of the edges at `v`: those between `v` and `w` all lie in triangles around `v`,
 //!   and in triangle order the k-th running from `v` to `w` pairs with the k-th running from `w`
-//!   to `v` ([`super::neighbors`]; the last run keeps that rule when [`super::last_run`] finds it
-//!   trivial);
+//!   to `v` ([`super::neighbors`]). The last run keeps that rule when [`super::last_run`] finds it
+//!   trivial; else its edges, all between the welded vertex of index `i0` and those of larger
+//!   index, pair as mikktspace.c's walk over them paired them ([`LastRun`]);
 //! - the groups: the connected components of the corners at `v` joined by those pairs between
 //!   triangles of one orientation ([`super::components`]);
 //! - the tangent: the normalized sum of the group's terms in ascending triangle order where its
@@ -31,6 +31,47 @@ use crate::kernel::vector::{normal, project_normalized, Vec3};
 /// sorted. Fuzzing builds (`cfg(fuzzing)`) lower it, so that the fuzzer's small meshes take both
 /// ways.
 pub(crate) const SCAN_LIMIT: usize = if cfg!(fuzzing) { 2 } else { 32 };
+
+#[cfg(test)]
+std::thread_local! {
+    /// Set by tests to sort the edges of every fan, whatever its size, on this thread.
+    pub(super) static SORT_ALWAYS: core::cell::Cell<bool> = const { core::cell::Cell::new(false) };
+}
+
+/// Whether a fan of `n` corners is scanned rather than sorted.
+fn scanned(n: usize) -> bool {
+    #[cfg(test)]
+    if SORT_ALWAYS.with(core::cell::Cell::get) {
+        return false;
+    }
+    n <= SCAN_LIMIT
+}
+
+/// Where the last run of the edge sort can matter: each welded vertex's index `values`, the last
+/// run's `i0` (`last`), and the good triangle across each of its edges (`neighbors`, from
+/// [`super::neighbors::pair_last_run`]).
+pub(crate) struct LastRun<'a> {
+    pub values: &'a [u32],
+    pub last: u32,
+    pub neighbors: &'a [[u32; 3]],
+}
+
+impl LastRun<'_> {
+    /// Whether the edges between welded vertices `v` and `w` are the last run's: the smaller of
+    /// their indices is its `i0`.
+    #[inline(always)]
+    fn holds(&self, v: u32, w: u32) -> bool {
+        self.values[v as usize].min(self.values[w as usize]) == self.last
+    }
+
+    /// The place in the fan `corners` (ascending) of the corner at the same welded vertex of the
+    /// triangle across the edge leaving `corner`, if the walk paired that edge.
+    fn across(&self, corners: &[u32], corner: u32) -> Option<usize> {
+        let other = self.neighbors[corner as usize / 3][corner as usize % 3];
+        let place = corners.partition_point(|&c| c / 3 < other);
+        (other != super::NONE && corners.get(place).is_some_and(|&c| c / 3 == other)).then_some(place)
+    }
+}
 
 /// Every good corner (`3 g + k`) under its welded vertex, in corner order: welded vertex `v`'s
 /// corners are `corners[starts[v]..starts[v + 1]]`.
@@ -69,6 +110,7 @@ fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> 
 pub(crate) fn evaluate_on_ranges(
     inputs: &Inputs,
     ids: &[[u32; 3]],
+    last_run: Option<&LastRun>,
     ends: &[usize],
     (starts, corners): (&mut [u32], &mut [u32]),
     outputs: (&mut [Vec3], &mut [u8]),
@@ -85,7 +127,7 @@ pub(crate) fn evaluate_on_ranges(
     let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
     let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
     super::write_in_ranges(ends, inputs.order, outputs, parts, |out, ((first, &end), counts)| {
-        *counts = evaluate(inputs, ids, &lists, first..end, &mut Fan::default(), out)?;
+        *counts = evaluate(inputs, (ids, last_run), &lists, first..end, &mut Fan::default(), out)?;
         Ok(())
     })?;
     let mut settled = Settled::default();
@@ -141,7 +183,7 @@ struct Fan {
 /// there were, how many went to the pairwise comparison, and how many fans were large.
 fn evaluate(
     inputs: &Inputs,
-    ids: &[[u32; 3]],
+    (ids, last_run): (&[[u32; 3]], Option<&LastRun>),
     lists: &Lists,
     vertices: core::ops::Range<usize>,
     fan: &mut Fan,
@@ -161,7 +203,9 @@ fn evaluate(
     for v in vertices {
         let corners = &lists.corners[lists.starts[v] as usize..lists.starts[v + 1] as usize];
         let n = corners.len();
-        let [groups, compared] = if n <= SCAN_LIMIT {
+        // Only fans with an index of at least the last run's `i0` hold any of its edges.
+        let last_run = last_run.filter(|r| r.values[v] >= r.last).map(|r| (r, v as u32));
+        let [groups, compared] = if scanned(n) {
             let arrays = Arrays {
                 leaving: &mut small.leaving[..n],
                 reaching: &mut small.reaching[..n],
@@ -172,7 +216,7 @@ fn evaluate(
                 set_aside: &mut small.set_aside[..n],
                 members: &mut small.members[..n],
             };
-            evaluate_fan(inputs, ids, corners, arrays, None, out)?
+            evaluate_fan(inputs, (ids, last_run), corners, arrays, None, out)?
         } else {
             settled.large_fans += 1;
             fan.reserve(n)?;
@@ -186,7 +230,7 @@ fn evaluate(
                 set_aside: &mut fan.set_aside[..n],
                 members: &mut fan.members[..n],
             };
-            evaluate_fan(inputs, ids, corners, arrays, Some(&mut fan.edges), out)?
+            evaluate_fan(inputs, (ids, last_run), corners, arrays, Some(&mut fan.edges), out)?
         };
         settled.components += groups;
         settled.compared += compared;
@@ -195,10 +239,11 @@ fn evaluate(
 }
 
 /// One welded vertex's `corners`, in ascending order; `edges` (room for two per corner) when
-/// there are more than [`SCAN_LIMIT`].
+/// there are more than [`SCAN_LIMIT`]; with `last_run` the vertex, where it may hold the last
+/// run's edges.
 fn evaluate_fan(
     inputs: &Inputs,
-    ids: &[[u32; 3]],
+    (ids, last_run): (&[[u32; 3]], Option<(&LastRun, u32)>),
     corners: &[u32],
     arrays: Arrays,
     edges: Option<&mut Vec<u64>>,
@@ -229,16 +274,27 @@ fn evaluate_fan(
     );
 
     // 1. Each pair of edges at the vertex joins its two corners when their triangles agree in
-    //    orientation: the k-th edge leaving toward w with the k-th reaching from w.
+    //    orientation: the k-th edge leaving toward w with the k-th reaching from w, but in the
+    //    last run, where an edge leaving toward w pairs with the edge the walk gave it.
     let join = |i: usize, j: usize, parent: &mut [u32]| {
         if preserving(i) == preserving(j) {
             union(parent, i, j);
+        }
+    };
+    let in_last_run = |w: u32| last_run.is_some_and(|(r, v)| r.holds(v, w));
+    let join_as_walked = |i: usize, parent: &mut [u32]| {
+        if let Some(j) = last_run.and_then(|(r, _)| r.across(corners, corners[i])) {
+            join(i, j, parent);
         }
     };
     match edges {
         None => {
             for i in 0..n {
                 let w = leaving[i];
+                if in_last_run(w) {
+                    join_as_walked(i, parent);
+                    continue;
+                }
                 let rank = leaving[..i].iter().filter(|&&x| x == w).count();
                 if let Some(j) = (0..n).filter(|&j| reaching[j] == w).nth(rank) {
                     join(i, j, parent);
@@ -256,6 +312,10 @@ fn evaluate_fan(
             for run in edges.chunk_by(|a, b| a >> 32 == b >> 32) {
                 let corner = |e: u64| (e as u32 >> 1) as usize;
                 let leaving = run.iter().filter(|&&e| e & 1 == 1);
+                if in_last_run((run[0] >> 32) as u32) {
+                    leaving.for_each(|&a| join_as_walked(corner(a), parent));
+                    continue;
+                }
                 let reaching = run.iter().filter(|&&e| e & 1 == 0);
                 for (&a, &b) in leaving.zip(reaching) {
                     join(corner(a), corner(b), parent);

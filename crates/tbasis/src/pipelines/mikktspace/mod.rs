@@ -466,28 +466,42 @@ fn solve<S: tspace::Space>(
         }
         None => WeldPath::ReplayedForAttributes,
     };
-    let fans_may_do = triangle_interface && path == WeldPath::ByValue;
     let values = (path != WeldPath::ByValue).then_some(&b.values[..welded_count]);
     let (phase, neighbors) = (&mut *b.phase, &mut b.neighbors[..good]);
-    let mut pairing = move || -> Result<(), Error> {
+    // Every edge's pairing (`whole`), or the last run's alone after a replayed weld, whose `i0`
+    // it returns.
+    let mut pairing = move |whole: bool| -> Result<Option<u32>, Error> {
         let mut phase = Arena::Carve(phase);
         let mut edges = edge_scratch(&mut phase, corner_count)?;
         edges.starts = &mut edges.starts[..welded_count + 1];
-        neighbors::pair_edges(ids, values, neighbors, edges);
-        Ok(())
+        Ok(match values {
+            Some(values) if !whole => Some(neighbors::pair_last_run(ids, values, neighbors, edges)),
+            _ => {
+                neighbors::pair_edges(ids, values, neighbors, edges);
+                None
+            }
+        })
     };
     // Taken fan by fan ([`fans`]), the groups need no pairing of every edge first, unless a
-    // GROUP_WITH_ANY triangle calls for the search.
-    let paired_beside = !checked_beside && ranges.ends().len() > 1 && !fans_may_do;
+    // GROUP_WITH_ANY triangle calls for the search: only the last run's, after a replayed weld.
+    let paired_beside = !checked_beside && ranges.ends().len() > 1;
+    let mut paired = None;
     if paired_beside {
-        beside_derivatives(threads, &mut derivatives, &mut || pairing().map(|()| true))?;
+        let whole = !triangle_interface;
+        beside_derivatives(threads, &mut derivatives, &mut || {
+            paired = Some((whole, pairing(whole)?));
+            Ok(true)
+        })?;
     } else if !checked_beside {
         derivatives(threads);
     }
-    let by_fans = fans_may_do && b.flags[..good].iter().all(|&f| f & GROUP_WITH_ANY == 0);
-    if !paired_beside && !by_fans {
-        pairing()?;
-    }
+    let by_fans = triangle_interface && b.flags[..good].iter().all(|&f| f & GROUP_WITH_ANY == 0);
+    let last_i0 = match paired {
+        Some((true, _)) => None,
+        Some((false, last)) if by_fans => last,
+        _ if by_fans && values.is_none() => None,
+        _ => pairing(!by_fans)?,
+    };
     if let Some(extras) = extras.as_deref() {
         faces::force_quad_orientation(packed, ids, order, extras.face_of, &mut b.flags[..good]);
     }
@@ -561,7 +575,13 @@ fn solve<S: tspace::Space>(
         let outputs = (tangents, &mut *b.orientation);
         let groups = if by_fans {
             let lists = (&mut groups.starts[..welded_count + 1], &mut groups.corners[..3 * good]);
-            GroupRoute::Fans(fans::evaluate_on_ranges(&inputs, ids, ranges.ends(), lists, outputs)?)
+            let last_run = last_i0.map(|last| fans::LastRun {
+                values: &b.values[..welded_count],
+                last,
+                neighbors,
+            });
+            let settled = fans::evaluate_on_ranges(&inputs, ids, last_run.as_ref(), ranges.ends(), lists, outputs)?;
+            GroupRoute::Fans(settled)
         } else {
             // Corners of GROUP_WITH_ANY triangles that no group reaches keep the default.
             outputs.0.fill(UNREACHED.0);
@@ -756,16 +776,13 @@ fn copy_to_degenerate<S: Copy>(
 
 /// Step 3 by value ([`value_weld`]): replaces each corner's vertex in `welded` by its welded
 /// vertex, with each vertex's in `slots`, and fills `source`; or leaves `welded` as it was and
-/// returns `None`. Uses `table` and `values` as scratch.
+/// returns `None`. Uses `table` as scratch.
 fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
     let vertex_count = attributes.mesh.vertex_count();
     let class = &mut b.slots[..vertex_count];
     // Two slots per vertex keep the table at most half full; the rest stays untouched.
-    let memory = value_weld::Memory {
-        table: &mut b.table[..2 * vertex_count + 2],
-        spare: b.values,
-    };
-    value_weld::weld(attributes, b.welded, class, b.source, memory)
+    let table = &mut b.table[..2 * vertex_count + 2];
+    value_weld::weld(attributes, b.welded, class, b.source, table)
 }
 
 /// Runs `derivatives` on `threads - 1` workers and `other` beside them on one; `other`'s outcome.

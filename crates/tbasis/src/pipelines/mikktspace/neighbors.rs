@@ -110,6 +110,22 @@ pub(crate) fn pair_edges(
     }
 }
 
+/// The pairing of the last run alone, for a route that pairs every other edge by the sorted rule
+/// itself ([`super::fans`]): writes `neighbors` as [`pair_edges`] does across the edges of the
+/// largest `i0`, [`NONE`] across every other, and returns that `i0`.
+pub(crate) fn pair_last_run(
+    ids: &[[u32; 3]],
+    values: &[u32],
+    neighbors: &mut [[u32; 3]],
+    mut scratch: EdgeScratch,
+) -> u32 {
+    neighbors.fill([NONE; 3]);
+    if ids.is_empty() {
+        return 0;
+    }
+    replay_last_run(ids, values, neighbors, &mut scratch)
+}
+
 /// The welded vertices of edge `edge` (corner `edge % 3` to the next of good triangle `edge / 3`).
 #[inline(always)]
 fn edge_ends(ids: &[[u32; 3]], edge: u32) -> (u32, u32) {

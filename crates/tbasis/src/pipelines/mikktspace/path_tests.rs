@@ -2,7 +2,7 @@
 //! mesh uses shows up.
 #![forbid(unsafe_code)]
 
-use super::{components, compute, scratch_bytes, GroupRoute, Routes, WeldPath};
+use super::{components, compute, fans, scratch_bytes, GroupRoute, Routes, WeldPath};
 use crate::kernel::mesh::Mesh;
 use crate::kernel::options::Options;
 use crate::kernel::report::Report;
@@ -86,9 +86,11 @@ fn the_fans_give_the_same_bits_on_every_simd_path() {
 
 /// Where the weld by value holds but the last run can matter, two threads run the last-run check
 /// beside the derivatives and the replay after it: random meshes whose positions repeat, so that
-/// triangles share vertices, give mikktspace.c's bits on one thread and two. Most have 16 to 80
-/// triangles (under `cfg(test)` two workers split 16); every fourth has up to 2016, past the
-/// check's own replay of a few cells, so that only the full replay gives every index.
+/// triangles share vertices, give mikktspace.c's bits on one thread and two, and on one thread
+/// with every fan's edges sorted as large fans' are ([`fans::SORT_ALWAYS`]): both ways pair the
+/// last run's edges as mikktspace.c's walk did. Most have 16 to 80 triangles (under `cfg(test)`
+/// two workers split 16); every fourth has up to 2016, past the check's own replay of a few
+/// cells, so that only the full replay gives every index.
 #[test]
 fn a_replayed_last_run_gives_mikktspace_cs_bits_on_two_threads() {
     let mut rng = TestRng(0x5EED_1A57);
@@ -114,12 +116,19 @@ fn a_replayed_last_run_gives_mikktspace_cs_bits_on_two_threads() {
         let mesh = Mesh::new(&positions[..], &normals[..])
             .with_texcoords(&texcoords[..])
             .with_indices(&indices[..]);
-        for threads in [1, 2] {
+        for (threads, sorted) in [(1, false), (2, false), (1, true)] {
             let mut corners = vec![[0.0f32; 4]; indices.len()];
             let options = Options::mikktspace().with_threads(threads);
-            crate::generate_corners(&mesh, &options, &mut StridedMut::from_slice(&mut corners)).expect("a result");
+            fans::SORT_ALWAYS.with(|always| always.set(sorted));
+            let generated = crate::generate_corners(&mesh, &options, &mut StridedMut::from_slice(&mut corners));
+            fans::SORT_ALWAYS.with(|always| always.set(false));
+            generated.expect("a result");
             let bits = |frames: &[[f32; 4]]| frames.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert!(bits(&corners) == bits(&expected), "round {round}, {threads} threads");
+            let way = if sorted { ", fans sorted" } else { "" };
+            assert!(
+                bits(&corners) == bits(&expected),
+                "round {round}, {threads} threads{way}"
+            );
         }
     }
     // Not vacuous: many meshes replay.

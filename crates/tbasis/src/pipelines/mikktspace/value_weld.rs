@@ -26,18 +26,11 @@ const BATCH: usize = 16;
 /// Marks a used vertex in `class` before it has a class.
 const USED: u32 = NONE - 1;
 
-/// Working arrays of the weld by value.
-pub(crate) struct Memory<'a> {
-    /// The hash table: at least two words per vertex.
-    pub table: &'a mut [u32],
-    /// One word per corner.
-    pub spare: &'a mut [u32],
-}
-
 /// Replaces each corner's vertex in `corners` (indices already checked) by its welded vertex,
 /// numbered in order of first use; writes each vertex's welded vertex to `class` ([`NONE`] for
-/// unused ones) and one vertex of each welded vertex to `source`. Returns the welded vertex count,
-/// or `None`, with `corners` untouched, where mikktspace.c's weld could differ (see the module).
+/// unused ones) and the first vertex of each welded vertex to `source`, using `table` (at least
+/// two words per vertex) as the hash table. Returns the welded vertex count, or `None`, with
+/// `corners` untouched, where mikktspace.c's weld could differ (see the module).
 ///
 /// The vertices are hashed in their own order, so that their attributes stream from memory and
 /// the table's probes are fetched a batch at a time; the corners then number the classes.
@@ -46,16 +39,15 @@ pub(crate) fn weld(
     corners: &mut [u32],
     class: &mut [u32],
     source: &mut [u32],
-    memory: Memory,
+    table: &mut [u32],
 ) -> Option<usize> {
-    let Memory { table, spare } = memory;
     class.fill(NONE);
     for &v in corners.iter() {
         class[v as usize] = USED;
     }
 
-    // 1. Each used vertex's class, numbered in vertex order for now; a vertex of each in `spare`.
-    //    A table entry holds the class in its low `id_bits` and low bits of the hash above them,
+    // 1. Each used vertex's class, named for now by its first vertex, which the other members
+    //    compare with. A table entry holds the class in its low `id_bits` and low bits of the hash above them,
     //    so that most entries of other classes are passed over without reading their attributes
     //    (a class is below the vertex count, so its field is never all ones: no entry is NONE).
     table.fill(NONE);
@@ -63,7 +55,6 @@ pub(crate) fn weld(
     let id_mask = NONE.checked_shr(u32::BITS - id_bits).unwrap_or(0);
     let fingerprint = |hash: u32| hash.checked_shl(id_bits).unwrap_or(0);
     let capacity = table.len() as u64;
-    let mut count = 0u32;
     let mut batch = [(0u32, [0u32; 8], [0u32; 8], 0usize, 0u32); BATCH];
     let mut v = 0;
     while v < class.len() {
@@ -89,14 +80,12 @@ pub(crate) fn weld(
             class[vertex as usize] = loop {
                 let entry = table[slot];
                 if entry == NONE {
-                    table[slot] = print | count;
-                    spare[count as usize] = vertex;
-                    count += 1;
-                    break count - 1;
+                    table[slot] = print | vertex;
+                    break vertex;
                 }
                 let id = entry & id_mask;
                 if entry & !id_mask == print {
-                    let other = attributes.key(spare[id as usize]);
+                    let other = attributes.key(id);
                     if other.map(canonical_bits) == canonical {
                         if other.map(f32::to_bits) != bits {
                             // Equal under `==`, different bits: the representative's would matter.
@@ -111,20 +100,20 @@ pub(crate) fn weld(
     }
 
     // 2. Renumber in order of first use by the corners, as the replayed weld numbers them.
-    let number = &mut table[..count as usize];
+    let number = &mut table[..class.len()];
     number.fill(NONE);
     let mut next = 0u32;
     for corner in corners.iter_mut() {
-        let old = class[*corner as usize] as usize;
-        if number[old] == NONE {
-            number[old] = next;
-            source[next as usize] = spare[old];
+        let first = class[*corner as usize];
+        if number[first as usize] == NONE {
+            number[first as usize] = next;
+            source[next as usize] = first;
             next += 1;
         }
-        *corner = number[old];
+        *corner = number[first as usize];
     }
     for id in class.iter_mut().filter(|id| **id != NONE) {
         *id = number[*id as usize];
     }
-    Some(count as usize)
+    Some(next as usize)
 }

@@ -95,14 +95,10 @@ fn replayed(attributes: &Attributes, indices: &[u32]) -> (Vec<u32>, Vec<u32>, Ve
 /// The weld by value: each corner's welded vertex, each vertex's, and a vertex of each welded
 /// vertex; `None` where it declines, after checking it left the corners as they were.
 fn by_value_weld(attributes: &Attributes, indices: &[u32]) -> Option<(Vec<u32>, Vec<u32>, Vec<u32>)> {
-    let (v, c) = (attributes.mesh.vertex_count(), indices.len());
+    let v = attributes.mesh.vertex_count();
     let (mut welded, mut class, mut source) = (indices.to_vec(), vec![0; v], vec![0; v]);
-    let (mut table, mut spare) = (vec![0; 2 * v + 2], vec![0; c]);
-    let memory = value_weld::Memory {
-        table: &mut table,
-        spare: &mut spare,
-    };
-    let Some(count) = value_weld::weld(attributes, &mut welded, &mut class, &mut source, memory) else {
+    let mut table = vec![0; 2 * v + 2];
+    let Some(count) = value_weld::weld(attributes, &mut welded, &mut class, &mut source, &mut table) else {
         assert_eq!(welded, indices, "a declined weld changed the corners");
         return None;
     };
