@@ -34,13 +34,13 @@
  *   none from another thread, whatever tbasis_mikktspace_set_threads says.
  *
  * - Returns 1 after the set callbacks, or 0 with no set callback called: when a callback of
- *   step 1 is NULL, when no face has 3 or 4 vertices, when such a face is numbered INT_MAX / 4 or
- *   above (mikktspace.c numbers face vertices 4 * face + vertex in an int, which still holds face
- *   INT_MAX / 4 itself), when the faces of 3 or 4 vertices have more than INT_MAX / 4 vertices in
- *   all (over 134 million quads; the library's own indices must stay below INT_MAX / 4, where
- *   mikktspace.c's limit is higher), or when memory runs out. A face numbered INT_MAX / 4 and those
- *   last two cases are the departures from mikktspace.c, whose behaviour when memory runs out is
- *   undefined (after a failed weld table it calls the set callbacks with face -1) or differs.
+ *   step 1 is NULL, when no face has 3 or 4 vertices, when such a face is numbered above
+ *   INT_MAX / 4 (mikktspace.c numbers face vertices 4 * face + vertex in an int, which overflows
+ *   past face INT_MAX / 4), when the faces of 3 or 4 vertices have more than INT_MAX / 4 vertices
+ *   in all (over 134 million quads; the library's own indices must stay below INT_MAX / 4, where
+ *   mikktspace.c's limit is higher), or when memory runs out. Those last two cases are the
+ *   departures from mikktspace.c, whose behaviour when memory runs out is undefined (after a
+ *   failed weld table it calls the set callbacks with face -1) or differs.
  *
  * - A bug in the library (a Rust panic) is caught inside the call, which returns 0; set callbacks
  *   called before it, if any, must then be ignored. The library never unwinds into the caller,

@@ -132,11 +132,11 @@ impl tbasis::mikktspace::Geometry for FarFaces {
 }
 
 #[test]
-fn a_face_numbered_int_max_over_4_returns_false_with_no_call() {
-    // mikktspace.c numbers a face vertex `4 * face + vert` in an int. The library takes faces up
-    // to INT_MAX / 4 - 1, the last face of the first mesh (`include/tbasis_mikktspace.h`), one
-    // fewer than mikktspace.c, where `4 * (INT_MAX / 4) + 3` is still INT_MAX.
-    let largest = (i32::MAX / 4 - 1) as usize;
+fn a_face_numbered_past_int_max_over_4_returns_false_with_no_call() {
+    // mikktspace.c numbers a face vertex `4 * face + vert` in an int: `4 * (INT_MAX / 4) + 3` is
+    // INT_MAX, and the next face overflows it. The library takes faces up to INT_MAX / 4, the
+    // last face of the first mesh (`include/tbasis_mikktspace.h`), and refuses the next.
+    let largest = (i32::MAX / 4) as usize;
     let mut within = FarFaces {
         face_count: largest + 1,
         set: Vec::new(),

@@ -164,7 +164,8 @@ fn read<I: Geometry>(geometry: &I) -> Result<Read, Error> {
     for face in 0..face_count {
         let verts = geometry.num_vertices_of_face(face);
         if verts == 3 || verts == 4 {
-            if face >= (i32::MAX / 4) as usize {
+            // Face INT_MAX / 4 is the last whose `4 * face + 3` is still an int.
+            if face > (i32::MAX / 4) as usize {
                 return Err(Error::SizeOverflow);
             }
             faces.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
