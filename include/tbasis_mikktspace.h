@@ -42,6 +42,11 @@
  *   departures from mikktspace.c, whose behaviour when memory runs out is undefined (after a
  *   failed weld table it calls the set callbacks with face -1) or differs.
  *
+ * - Where mikktspace.c converts a float past int's range to int in its weld's grid (undefined
+ *   in C; it happens only when face 0 has neither 3 nor 4 vertices and a corner lies far outside
+ *   the box of the others), the library takes the cell mikktspace.c built for x86-64 takes, on
+ *   every processor.
+ *
  * - A bug in the library (a Rust panic) is caught inside the call, which returns 0; set callbacks
  *   called before it, if any, must then be ignored. The library never unwinds into the caller,
  *   and does not expect a callback to unwind out of it (C++ exceptions included).

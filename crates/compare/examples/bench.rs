@@ -19,7 +19,8 @@
 //! times [`QUICK_ROUNDS`] rounds per scene (mikktspace.c in one) and writes `target/bench/bench.md`
 //! instead, to check the output in about a minute; its figures are not worth quoting. `--calls`
 //! times one configuration (named as in the tables) `COUNT` times in a row in one process and
-//! prints every call's time, to show how the times of one configuration move ([`consecutive_calls`]).
+//! prints every call's time, to show how the times of one configuration move, and the fresh memory
+//! a call faults in ([`consecutive_calls`]).
 //! `--parts` times configurations on each primitive of the asset apart ([`per_primitive`]), to show
 //! which primitives a scene's time comes from.
 //!
@@ -43,6 +44,8 @@
 //! Prints the tables, method MIKKTSPACE's ratios to mikktspace.c and meshoptimizer, the goals
 //! with what this run measured, and writes `docs/bench.md`.
 
+#[path = "common/fresh_memory.rs"]
+mod fresh_memory;
 #[path = "../../../c_tests/listing.rs"]
 mod listing;
 #[path = "common/machine.rs"]
@@ -56,6 +59,7 @@ use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+use fresh_memory::{Faults, Fresh};
 use listing::listing_tangents;
 use machine::{load_average, machine};
 use meshopt::TangentOptions;
@@ -555,9 +559,18 @@ impl Outputs {
     }
 }
 
-/// Runs `generator` on every part of `scene`, `calls` times over; returns the time of it all and
-/// how many calls the library refused (policy REJECT on a degenerate triangle).
-fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize) -> (Duration, usize) {
+/// What [`run`] measured.
+struct Timed {
+    /// The time of every call.
+    time: Duration,
+    /// Calls the library refused (policy REJECT on a degenerate triangle).
+    refused: usize,
+    /// The fresh memory the calls faulted in, where the system tells ([`fresh_memory`]).
+    fresh: Option<Fresh>,
+}
+
+/// Runs `generator` on every part of `scene`, `calls` times over.
+fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize) -> Timed {
     let outputs = outputs.of_generator(generator);
     let mut refused = 0;
     let mut scratch = Vec::new();
@@ -570,6 +583,7 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
             scratch = vec![1u8; largest.max().unwrap_or(0)];
         }
     }
+    let faults = Faults::now();
     let start = Instant::now();
     for _ in 0..calls {
         for (part, tangents) in scene.parts.iter().zip(outputs.iter_mut()) {
@@ -636,7 +650,12 @@ fn run(generator: Generator, scene: &Scene, outputs: &mut Outputs, calls: usize)
         }
         black_box(&mut *outputs);
     }
-    (start.elapsed(), refused)
+    let time = start.elapsed();
+    Timed {
+        time,
+        refused,
+        fresh: faults.zip(Faults::now()).map(|(before, after)| after.since(&before)),
+    }
 }
 
 /// mikktspace.c's callbacks in Rust, as [`mikktspace_reference`]'s wrapper implements them: each
@@ -706,7 +725,7 @@ fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
     let round: f64 = configs
         .iter()
         .filter(|c| !c.generator.slow())
-        .map(|c| run(c.generator, scene, &mut outputs, calls).0.as_secs_f64())
+        .map(|c| run(c.generator, scene, &mut outputs, calls).time.as_secs_f64())
         .sum();
     let rounds = if quick {
         QUICK_ROUNDS
@@ -723,7 +742,11 @@ fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
             if config.generator.slow() && r % slow_every != 0 {
                 continue;
             }
-            let (time, refusals) = run(config.generator, scene, &mut outputs, calls);
+            let Timed {
+                time,
+                refused: refusals,
+                ..
+            } = run(config.generator, scene, &mut outputs, calls);
             samples[k].push(time.as_secs_f64() / calls as f64);
             refused[k] = refusals / calls;
         }
@@ -747,7 +770,8 @@ fn measure(scene: &Scene, configs: &[Config], quick: bool) -> Vec<Measured> {
 /// `--calls COUNT CONFIGURATION [FILTER]`: one process calls the configuration the tables name
 /// CONFIGURATION `COUNT` times in a row on the torus, the asset and the cube (or those whose name
 /// contains FILTER), after an untimed call, and prints each call's time in order, then their
-/// quartiles.
+/// quartiles and the median call's fresh memory (Linux: [`fresh_memory`]; the huge pages are
+/// counted over the whole system, so other work on the machine adds to it).
 /// The tables give medians over rounds; this shows how one configuration's times move within a
 /// process. Writes nothing.
 fn consecutive_calls(args: &[String]) -> Result<(), String> {
@@ -772,8 +796,13 @@ fn consecutive_calls(args: &[String]) -> Result<(), String> {
         let mut outputs = Outputs::of(&scene);
         run(config.generator, &scene, &mut outputs, 1);
         let per_vertex = |time: Duration| ns(time) / scene.vertices() as f64;
+        let mut fresh = Vec::with_capacity(count);
         let times: Vec<f64> = (0..count)
-            .map(|_| per_vertex(run(config.generator, &scene, &mut outputs, 1).0))
+            .map(|_| {
+                let timed = run(config.generator, &scene, &mut outputs, 1);
+                fresh.extend(timed.fresh);
+                per_vertex(timed.time)
+            })
             .collect();
         println!(
             "\n{}\n{name}, {count} calls in a row, ns/vertex in order:",
@@ -786,6 +815,16 @@ fn consecutive_calls(args: &[String]) -> Result<(), String> {
         let mut times = times;
         let [low, q1, median, q3, high] = quantiles(&mut times, [0.0, 0.25, 0.5, 0.75, 1.0]);
         println!("fastest {low:.1}, quartiles {q1:.1} / {median:.1} / {q3:.1}, slowest {high:.1}");
+        if fresh.len() == count {
+            fresh.sort_by_key(Fresh::bytes);
+            let median = &fresh[count / 2];
+            println!(
+                "fresh memory faulted in per call (median): {:.1} MiB, {} faults of a huge page and {} of a base page",
+                median.bytes() as f64 / f64::from(1 << 20),
+                median.huge_faults,
+                median.other_faults
+            );
+        }
     }
     Ok(())
 }
@@ -835,7 +874,7 @@ fn per_primitive(args: &[String]) -> Result<(), String> {
     for round in 0..=rounds {
         for (p, (scene, outputs)) in scenes.iter().zip(outputs.iter_mut()).enumerate() {
             for (k, config) in chosen.iter().enumerate() {
-                let (time, refused) = run(config.generator, scene, outputs, 1);
+                let Timed { time, refused, .. } = run(config.generator, scene, outputs, 1);
                 if round == 0 && refused > 0 {
                     refusals.push(format!(
                         "{} refused primitive {p}: its times are the refusal's",

@@ -66,6 +66,26 @@ fn a_far_first_corner_behind_an_ignored_face_leaves_the_weld_box_alone() {
     assert_no_departures("far first corners", &departures, meshes.len());
 }
 
+/// The first corner at x = 1e7 instead: its grid index, `2048 * (x - min) / (max - min)` in a box
+/// at most 1 wide, is past int's range, where mikktspace.c's conversion is undefined in C and
+/// x86-64's gives `INT_MIN`, cell 0, which the library takes on every processor (the comparison
+/// needs mikktspace.c built for x86-64).
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn a_first_corner_past_ints_range_takes_the_cell_x86_64_gives_it() {
+    let meshes: Vec<FaceMesh> = (0..3000)
+        .map(|seed| {
+            let mut mesh = face_scenes::far_first_corner(seed);
+            // Face 0 has 5 vertices; face 1's first is the far corner.
+            let far = mesh.face_vertices[5] as usize;
+            mesh.positions[far] = [1e7, 0.0, 0.0];
+            mesh
+        })
+        .collect();
+    let departures: Vec<String> = meshes.iter().flat_map(departures).collect();
+    assert_no_departures("first corners past int's range", &departures, meshes.len());
+}
+
 #[test]
 fn a_failed_allocation_returns_false_with_no_call() {
     // Quads, 5-vertex faces and degenerate faces on one thread and, at 30 degrees, the pairwise
