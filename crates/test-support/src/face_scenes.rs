@@ -457,18 +457,18 @@ pub fn generated() -> Vec<FaceMesh> {
 }
 
 /// Behind a first face of 5 vertices, which mikktspace.c ignores but for its vertex 0's position,
-/// 3 to 14 triangles over 3 to 8 vertices, the first triangle's first corner alone far out at
-/// x = 100. mikktspace.c's weld starts its bounding box at that ignored vertex and leaves the
-/// first corner out: that corner's position must not widen the box, whose grid decides which
-/// corner represents each welded vertex, and so the edge sort's last run.
-pub fn far_first_corner(seed: u64) -> FaceMesh {
+/// 3 to 14 triangles over 3 to 8 vertices in a box at most 1 wide, the first triangle's first
+/// corner alone far out at x = `far_x`. mikktspace.c's weld starts its bounding box at that
+/// ignored vertex and leaves the first corner out: that corner's position must not widen the box,
+/// whose grid decides which corner represents each welded vertex, and so the edge sort's last run.
+pub fn far_first_corner(seed: u64, far_x: f32) -> FaceMesh {
     let mut rng = Pcg32::new(seed, 29);
     let mut below = |n: usize| rng.next_u32() as usize % n;
     let mut out = FaceMesh::new(&format!("far first corner behind an ignored face (seed {seed})"));
     out.push_face((0..5).map(|_| ([0.5, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0])));
     let up = [0.0, 0.0, 1.0];
     let far = out.vertex(Vertex {
-        position: [100.0, 0.0, 0.0],
+        position: [far_x, 0.0, 0.0],
         normal: up,
         uv: [0.9, 0.1],
     });
