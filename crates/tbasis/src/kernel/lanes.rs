@@ -17,6 +17,45 @@ pub(crate) const LANES: usize = 64;
 /// unasked.
 pub(crate) const PREFETCH_TRIANGLES: usize = 64;
 
+/// How many triangles ahead a reader that asks ahead ([`BatchReader::asks_ahead`]) asks for its
+/// corners' attributes: far enough that they arrive before the batch's arithmetic needs them.
+const PREFETCH_ATTRIBUTES: usize = 16;
+
+/// How many triangles apart [`jumps_around`] compares: one batch.
+const ORDER_STRIDE: usize = LANES;
+
+/// How many pairs of triangles [`jumps_around`] compares, at most.
+const ORDER_SAMPLES: usize = 64;
+
+/// How far apart the first vertices of two triangles a batch apart may lie where the triangle
+/// order follows the vertex order: a batch there brings about 32 new vertices (a closed mesh has
+/// about two triangles per vertex; 32 on the benchmark's torus, hundreds to thousands on
+/// FlightHelmet.cc1's primitives).
+const NEAR_VERTICES: usize = 256;
+
+/// Whether the triangles of `triangles` jump around the vertex arrays, so that a batch's corners
+/// would each wait for memory: true when more than a quarter of the pairs of triangles a batch
+/// apart, evenly spaced, have first vertices more than [`NEAR_VERTICES`] apart. Where the triangle
+/// order follows the vertex order (a grid, a mesh whose vertices were renumbered in order of first
+/// use) the processor's own prefetching finds the vertices, and asking for them costs time.
+fn jumps_around(mesh: &Mesh, triangles: &core::ops::Range<usize>) -> bool {
+    let Some(last) = triangles
+        .end
+        .checked_sub(ORDER_STRIDE)
+        .filter(|&last| last > triangles.start)
+    else {
+        return false;
+    };
+    let step = (last - triangles.start).div_ceil(ORDER_SAMPLES).max(1);
+    let (mut sampled, mut jumps) = (0usize, 0usize);
+    for t in (triangles.start..last).step_by(step) {
+        let (a, b) = (mesh.indices.triangle(t)[0], mesh.indices.triangle(t + ORDER_STRIDE)[0]);
+        jumps += usize::from(a.abs_diff(b) > NEAR_VERTICES);
+        sampled += 1;
+    }
+    4 * jumps > sampled
+}
+
 /// One value per triangle of a batch.
 pub type Lanes = [f32; LANES];
 
@@ -80,6 +119,7 @@ pub struct BatchReader<'m, K> {
     texcoords: Strided<'m, [f32; 2]>,
     keep: K,
     with_normals: bool,
+    asks_ahead: bool,
     next: usize,
     end: usize,
 }
@@ -98,9 +138,17 @@ impl<'m, K: Fn(&[usize; 3]) -> bool> BatchReader<'m, K> {
             texcoords,
             keep,
             with_normals,
+            asks_ahead: jumps_around(mesh, &triangles),
             next: triangles.start,
             end: triangles.end,
         }
+    }
+
+    /// Whether the reader asks for the attributes of the triangles it will read next, where its
+    /// triangles jump around the vertex arrays ([`jumps_around`]): then whoever adds the batch's
+    /// terms to per-vertex sums should ask for those ahead too.
+    pub fn asks_ahead(&self) -> bool {
+        self.asks_ahead
     }
 
     /// Fills `batch` with the next triangles; false once every triangle has been read.
@@ -111,6 +159,16 @@ impl<'m, K: Fn(&[usize; 3]) -> bool> BatchReader<'m, K> {
             let t = self.next;
             self.next += 1;
             self.mesh.indices.prefetch_triangle(t + PREFETCH_TRIANGLES);
+            if self.asks_ahead && t + PREFETCH_ATTRIBUTES < self.end {
+                // Unchecked indices: a prefetch past a view's end asks for nothing.
+                for v in self.mesh.indices.triangle(t + PREFETCH_ATTRIBUTES) {
+                    self.mesh.positions.prefetch(v);
+                    self.texcoords.prefetch(v);
+                    if self.with_normals {
+                        self.mesh.normals.prefetch(v);
+                    }
+                }
+            }
             let corners = self.mesh.checked_triangle(t)?;
             if !(self.keep)(&corners) {
                 continue;
@@ -130,5 +188,66 @@ impl<'m, K: Fn(&[usize; 3]) -> bool> BatchReader<'m, K> {
             batch.len += 1;
         }
         Ok(batch.len > 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::mesh::Indices;
+    use crate::kernel::test_rng::TestRng;
+
+    /// Whether a reader over every triangle of `indices` asks ahead.
+    fn asks_ahead(indices: &[u32]) -> bool {
+        let vertex_count = indices.iter().max().map_or(0, |&v| v as usize + 1);
+        let (vectors, texcoords) = (vec![[0.0f32; 3]; vertex_count], vec![[0.0f32; 2]; vertex_count]);
+        let mesh = Mesh {
+            positions: Strided::from_slice(&vectors),
+            normals: Strided::from_slice(&vectors),
+            texcoords: Some(Strided::from_slice(&texcoords)),
+            indices: Indices::U32(Strided::from_slice(indices)),
+        };
+        let triangles = 0..indices.len() / 3;
+        BatchReader::new(&mesh, Strided::from_slice(&texcoords), triangles, |_| true, true).asks_ahead()
+    }
+
+    /// The two triangles of each cell of a `width` x `height` grid of vertices, row by row, vertex
+    /// `(i, j)` numbered `number[j * width + i]`.
+    fn grid(width: usize, height: usize, number: &[u32]) -> Vec<u32> {
+        let id = |i: usize, j: usize| number[j * width + i];
+        let mut indices = Vec::new();
+        for j in 0..height - 1 {
+            for i in 0..width - 1 {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                indices.extend([a, b, c, a, c, d]);
+            }
+        }
+        indices
+    }
+
+    #[test]
+    fn a_reader_asks_ahead_only_where_the_triangles_jump_around_the_vertices() {
+        let mut rng = TestRng(0x9e37_79b9_7f4a_7c15);
+        for (width, height) in [(300, 200), (1000, 20), (40, 40)] {
+            let in_order: Vec<u32> = (0..(width * height) as u32).collect();
+            let mut shuffled = in_order.clone();
+            for i in (1..shuffled.len()).rev() {
+                shuffled.swap(i, rng.below(i + 1));
+            }
+            assert!(
+                !asks_ahead(&grid(width, height, &in_order)),
+                "{width} x {height} in order"
+            );
+            assert!(
+                asks_ahead(&grid(width, height, &shuffled)),
+                "{width} x {height} shuffled"
+            );
+        }
+        // Fewer triangles than a batch: nothing to tell, no asking.
+        let in_order: Vec<u32> = (0..16).collect();
+        let mut shuffled = in_order.clone();
+        shuffled.reverse();
+        assert!(!asks_ahead(&grid(4, 4, &shuffled)));
+        assert!(!asks_ahead(&[]));
     }
 }

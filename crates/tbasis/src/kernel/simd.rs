@@ -87,6 +87,33 @@ pub(crate) fn prefetch<T>(items: &[T], index: usize) {
     }
 }
 
+/// Where a slice's elements lie, without a borrow of it: a loop that writes the slice can still
+/// ask for the elements it will need next ([`prefetch_address`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Addresses {
+    base: *const u8,
+    size: usize,
+    len: usize,
+}
+
+impl Addresses {
+    pub(crate) fn of<T>(items: &[T]) -> Self {
+        Addresses {
+            base: items.as_ptr().cast(),
+            size: size_of::<T>(),
+            len: items.len(),
+        }
+    }
+
+    /// [`prefetch`] of element `index` (nothing past the end).
+    #[inline(always)]
+    pub(crate) fn prefetch(self, index: usize) {
+        if index < self.len {
+            prefetch_address(self.base.wrapping_add(index * self.size));
+        }
+    }
+}
+
 /// Asks the CPU to bring the bytes at `address` into its cache ahead of a read (see
 /// [`prefetch`]). Any address will do: a prefetch never faults and reads nothing the program can
 /// observe.

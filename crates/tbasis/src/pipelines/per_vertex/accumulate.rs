@@ -474,6 +474,8 @@ impl CornerTerm {
 /// on a mirror fold can keep one side's frame instead of a cancelled sum.
 ///
 /// Per-triangle and per-corner arithmetic runs a batch of triangles at a time, lane by lane.
+/// Where the triangles jump around the vertex arrays ([`BatchReader::asks_ahead`]), each batch
+/// goes to `ahead` before its arithmetic, so that what `visit` will touch can be asked for.
 #[inline(always)]
 fn measure(
     mesh: &Mesh,
@@ -481,6 +483,7 @@ fn measure(
     options: &Options,
     triangles: Range<usize>,
     keep: impl Fn(&[usize; 3]) -> bool,
+    ahead: impl Fn(&TriangleBatch),
     mut visit: impl FnMut(usize, usize, usize, CornerTerm),
 ) -> Result<(), Error> {
     let v_sign = if options.flip_v { -1.0 } else { 1.0 };
@@ -491,6 +494,9 @@ fn measure(
     let mut sides = Sides::new();
     let mut corners = Corners::new();
     while reader.fill(&mut batch)? {
+        if reader.asks_ahead() {
+            ahead(&batch);
+        }
         faces.solve(&batch, v_sign, options.degenerate_threshold);
         sides.classify(&faces, &batch);
         corners.weigh(options.method, &faces, &batch);
@@ -548,15 +554,24 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
     let owned = scratch.first..scratch.first + scratch.flags.len();
     let triangles = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
     let keep = |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v));
-    measure(mesh, texcoords, options, triangles, keep, |t, k, v, term| {
-        let Some(slot) = scratch.slot(v) else {
-            return;
-        };
-        if k == 0 && term.side == NONE {
-            report.note_degenerate(t);
-        }
-        term.add_to(&mut scratch.sums[slot], &mut scratch.flags[slot]);
-    })?;
+    let ahead = SumsAhead::of(scratch);
+    measure(
+        mesh,
+        texcoords,
+        options,
+        triangles,
+        keep,
+        |batch| ahead.batch(batch),
+        |t, k, v, term| {
+            let Some(slot) = scratch.slot(v) else {
+                return;
+            };
+            if k == 0 && term.side == NONE {
+                report.note_degenerate(t);
+            }
+            term.add_to(&mut scratch.sums[slot], &mut scratch.flags[slot]);
+        },
+    )?;
     Ok(report)
 }
 
@@ -565,6 +580,46 @@ pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Resu
 /// benchmark asset, two workers took longest with 1024 and with 16384 of the sizes from 1024 to
 /// 65536, least with 8192). Unit tests cut small meshes into several chunks too.
 const CHUNK_TRIANGLES: usize = if cfg!(test) { 8 } else { 8 * 1024 };
+
+/// How many terms ahead [`accumulate_in_chunks`] asks for the sums a term is added to.
+const PREFETCH_TERMS: usize = 16;
+
+/// Asks for vertices' sums and flags before their terms are added. Where the triangles jump
+/// around the vertex arrays, each addition would otherwise wait for memory: on FlightHelmet.cc1
+/// adding the terms took a third of a call (`docs/speed-goals.md`).
+#[derive(Clone, Copy)]
+struct SumsAhead {
+    sums: simd::Addresses,
+    flags: simd::Addresses,
+    first: usize,
+}
+
+impl SumsAhead {
+    fn of(scratch: &Scratch) -> Self {
+        SumsAhead {
+            sums: simd::Addresses::of(scratch.sums),
+            flags: simd::Addresses::of(scratch.flags),
+            first: scratch.first,
+        }
+    }
+
+    /// Vertex `v`'s, if the scratch holds it.
+    #[inline(always)]
+    fn vertex(self, v: usize) {
+        let slot = v.wrapping_sub(self.first);
+        self.sums.prefetch(slot);
+        self.flags.prefetch(slot);
+    }
+
+    /// Those of every corner of `batch`, before its arithmetic: they are there when its terms are
+    /// added.
+    #[inline(always)]
+    fn batch(self, batch: &TriangleBatch) {
+        for &v in batch.vertex.iter().flat_map(|corner| &corner[..batch.len]) {
+            self.vertex(v);
+        }
+    }
+}
 
 /// `lists` lists of corner terms, each with room for `room` terms, or [`Error::OutOfMemory`].
 fn term_lists(lists: usize, room: usize) -> Result<Vec<Mutex<Vec<CornerTerm>>>, Error> {
@@ -631,8 +686,15 @@ pub fn accumulate_in_chunks(
             // After a failure the others only wait out the rounds.
             if !failed.load(Ordering::Relaxed) {
                 let (filling, adding) = (&sets[round % 2], &sets[(round + 1) % 2]);
+                let ahead = SumsAhead::of(&part);
                 for w in 0..workers {
-                    for term in lock(&adding[w * workers + d]).iter() {
+                    let list = lock(&adding[w * workers + d]);
+                    for (i, term) in list.iter().enumerate() {
+                        // The terms' vertices jump around (else the workers would split the
+                        // vertices instead): each asks for a later one's sums.
+                        if let Some(later) = list.get(i + PREFETCH_TERMS) {
+                            ahead.vertex(later.vertex as usize);
+                        }
                         let slot = term.vertex as usize - part.first;
                         term.add_to(&mut part.sums[slot], &mut part.flags[slot]);
                     }
@@ -713,12 +775,18 @@ fn measure_into_lists(
     } = sinks;
     let (mut found, mut out_of_memory) = (Report::default(), false);
     let everything = |_: &[usize; 3]| true;
+    let ahead = first_part.as_deref().map(SumsAhead::of);
     measure(
         mesh,
         texcoords,
         options,
         triangles,
         everything,
+        |batch| {
+            if let Some(ahead) = ahead {
+                ahead.batch(batch);
+            }
+        },
         #[inline(always)]
         |t, k, v: usize, term: CornerTerm| {
             if k == 0 && term.side == NONE {
