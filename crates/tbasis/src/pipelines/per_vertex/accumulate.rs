@@ -586,7 +586,7 @@ const PREFETCH_TERMS: usize = 16;
 
 /// Asks for vertices' sums and flags before their terms are added. Where the triangles jump
 /// around the vertex arrays, each addition would otherwise wait for memory: on FlightHelmet.cc1
-/// adding the terms took a third of a call (`docs/speed-goals.md`).
+/// the line that adds a term took over a quarter of a call's samples (`docs/speed-goals.md`).
 #[derive(Clone, Copy)]
 struct SumsAhead {
     sums: simd::Addresses,
