@@ -24,7 +24,9 @@ mod status;
 
 use c_calls::{assert_out_of_memory, c_mesh, Entry, UNTOUCHED};
 use tbasis_test_support::alloc_count::{allocations, fail_allocation, Counting};
-use tbasis_test_support::cases::{all_uvs_equal, mirror_fold, quantized_uv_sphere, sphere_poles, unit_quad, Case};
+use tbasis_test_support::cases::{
+    all_uvs_equal, disk_after_a_triangle, mirror_fold, quantized_uv_sphere, sphere_poles, unit_quad, Case,
+};
 use tbasis_test_support::shapes::Poles;
 
 #[global_allocator]
@@ -160,7 +162,15 @@ fn each_allocation_of_mikktspace_may_fail_and_the_call_says_so() {
         TBASIS_DEGENERATE_INHERIT,
         TBASIS_DEGENERATE_REJECT,
     ];
-    fail_each_allocation(&policies.map(|policy| (TBASIS_METHOD_MIKKTSPACE, policy)), small_cases);
+    // Per corner, MIKKTSPACE writes the caller's output in place, fan by fan: a fan of 40
+    // corners, past the scan limit, after another, makes it reserve the large fan's arrays
+    // before it writes the first.
+    let cases = || {
+        let mut cases = small_cases();
+        cases.push(disk_after_a_triangle(40));
+        cases
+    };
+    fail_each_allocation(&policies.map(|policy| (TBASIS_METHOD_MIKKTSPACE, policy)), cases);
 }
 
 /// For each `(method, policy)`, on `cases`, per vertex and per corner: for each `k` up

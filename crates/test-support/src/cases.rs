@@ -114,6 +114,30 @@ pub fn unit_quad() -> Case {
     }
 }
 
+/// A flat disk of `spokes` triangles around its centre, texture coordinates following the
+/// positions, after a triangle of its own: the index buffer names the centre only after three
+/// other vertices, so that a method working vertex by vertex reaches the centre's fan of `spokes`
+/// corners after others.
+pub fn disk_after_a_triangle(spokes: usize) -> Case {
+    let mut positions = vec![[10.0, 0.0, 0.0], [11.0, 0.0, 0.0], [10.0, 1.0, 0.0], [0.0, 0.0, 0.0]];
+    let mut texcoords = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5]];
+    let mut indices = vec![0, 1, 2];
+    for i in 0..spokes {
+        let angle = i as f32 * core::f32::consts::TAU / spokes as f32;
+        let (y, x) = angle.sin_cos();
+        positions.push([x, y, 0.0]);
+        texcoords.push([0.5 + 0.5 * x, 0.5 + 0.5 * y]);
+        indices.extend([3, 4 + i as u32, 4 + ((i + 1) % spokes) as u32]);
+    }
+    Case {
+        name: format!("disk_of_{spokes}_after_a_triangle"),
+        normals: vec![[0.0, 0.0, 1.0]; positions.len()],
+        positions,
+        texcoords: Some(texcoords),
+        indices: Some(indices),
+    }
+}
+
 /// `case` renamed, with other texture coordinates.
 fn with_uvs(case: Case, name: &str, uvs: Vec<[f32; 2]>) -> Case {
     assert_eq!(uvs.len(), case.vertex_count());

@@ -37,9 +37,9 @@ pub fn generate(mesh: &Mesh, options: &Options, output: &mut Output) -> Result<R
 }
 
 /// [`generate`] in the caller's scratch: at least [`scratch_size_for`] bytes, any alignment. With
-/// `threads` 0 or 1 the call then allocates nothing (method MIKKTSPACE: but for a group whose
-/// tangents may be exactly opposite or are not all of unit length, or a welded vertex with more
-/// than 32 corners).
+/// `threads` 0 or 1 the call then allocates nothing (method MIKKTSPACE: but for a welded vertex
+/// with more than 32 corners, or, on a mesh where a triangle takes its orientation from a group,
+/// a group whose tangents may be exactly opposite or are not all of unit length).
 ///
 /// ```
 /// use tbasis::{generate_with_scratch, scratch_size_for, Mesh, Options, Output};

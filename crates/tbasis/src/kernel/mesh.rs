@@ -407,8 +407,8 @@ impl<'a> Output<'a> {
     /// Disjoint parts for consecutive vertex ranges (exclusive `ends`), one per worker, without
     /// allocating.
     pub(crate) fn split<'p>(&'p mut self, ends: &'p [usize]) -> impl Iterator<Item = OutputPart<'p>> + 'p {
-        let tangents = self.tangents.split(ends).into_iter();
-        let mut bitangents = self.bitangents.as_mut().map(|b| b.split(ends).into_iter());
+        let tangents = self.tangents.split(ends, 1).into_iter();
+        let mut bitangents = self.bitangents.as_mut().map(|b| b.split(ends, 1).into_iter());
         let starts = core::iter::once(0).chain(ends.iter().copied());
         tangents.zip(starts).map(move |(tangents, first)| OutputPart {
             tangents,

@@ -194,7 +194,7 @@ pub fn write_corner_frames(
     let corner_ends = parallel::Ranges::from_ends(ends.iter().map(|&end| 3 * end));
     let starts = core::iter::once(0).chain(ends.iter().copied());
     let parts = tangents
-        .split(corner_ends.ends())
+        .split(corner_ends.ends(), 1)
         .into_iter()
         .zip(starts.zip(ends.iter().copied()));
     let first_error = |before: Result<(), Error>, next| before.and(next);

@@ -530,6 +530,15 @@ impl<'a, T: Element> StridedMut<'a, T> {
         unsafe { self.base.add(i * self.stride).cast::<T>().write_unaligned(value) }
     }
 
+    /// Reads element `i` back. Panics when `i >= len`.
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize) -> T {
+        assert!(i < self.len, "strided read out of bounds");
+        // SAFETY: i < len and the constructor's contract covers every element below len; `T` is
+        // valid for any bytes (`Element`).
+        unsafe { self.base.add(i * self.stride).cast::<T>().read_unaligned() }
+    }
+
     /// The elements as a mutable slice, when they sit packed at an address aligned for `T` (see
     /// [`Strided::packed`]).
     #[inline(always)]
@@ -573,14 +582,16 @@ impl<'a, T: Element> StridedMut<'a, T> {
     }
 
     /// Disjoint views of consecutive element ranges covering the view, for writing from several
-    /// threads; `ends` are the exclusive ends of the ranges, increasing, the last at most `len`.
-    /// Made one at a time as the result is iterated, without allocating.
-    pub(crate) fn split<'p>(&'p mut self, ends: &'p [usize]) -> Split<'p, T> {
+    /// threads; `ends` are the exclusive ends of the ranges in units of `per` elements,
+    /// increasing, the last at most `len / per`. Made one at a time as the result is iterated,
+    /// without allocating.
+    pub(crate) fn split<'p>(&'p mut self, ends: &'p [usize], per: usize) -> Split<'p, T> {
         Split {
             parts: SplitParts {
                 base: self.base,
                 stride: self.stride,
                 len: self.len,
+                per,
                 start: 0,
                 ends: ends.iter(),
                 _borrow: PhantomData,
@@ -608,6 +619,8 @@ pub(crate) struct SplitParts<'p, T> {
     base: *mut u8,
     stride: usize,
     len: usize,
+    /// Elements per unit of `ends`.
+    per: usize,
     /// Where the next part starts.
     start: usize,
     ends: core::slice::Iter<'p, usize>,
@@ -619,7 +632,7 @@ impl<'p, T: Element> Iterator for SplitParts<'p, T> {
     type Item = StridedMut<'p, T>;
 
     fn next(&mut self) -> Option<StridedMut<'p, T>> {
-        let (start, end) = (self.start, *self.ends.next()?);
+        let (start, end) = (self.start, self.per * *self.ends.next()?);
         assert!(start <= end && end <= self.len, "split ranges out of order");
         self.start = end;
         // SAFETY: elements start..end lie inside the view `split` borrowed mutably for 'p, the
@@ -632,6 +645,10 @@ impl<'p, T: Element> Iterator for SplitParts<'p, T> {
 // SAFETY: a `StridedMut` is the only writer of its elements (its constructors require it), so it
 // may move to another thread.
 unsafe impl<T: Element> Send for StridedMut<'_, T> {}
+
+// SAFETY: through a shared reference a `StridedMut` only reads its elements (`get`, `len`), as a
+// shared `&mut [T]` does.
+unsafe impl<T: Element> Sync for StridedMut<'_, T> {}
 
 impl<'a, T: Element> From<&'a [T]> for Strided<'a, T> {
     fn from(items: &'a [T]) -> Self {

@@ -17,6 +17,7 @@
 #![forbid(unsafe_code)]
 
 use super::faces::ORIENT_PRESERVING;
+use super::frames::Arrays;
 use super::groups::Groups;
 use super::tspace::{self, Inputs, Space, Spilled, Written};
 use super::NONE;
@@ -145,8 +146,7 @@ pub(crate) fn evaluate(
     set_aside.sort_unstable();
     let mut spilled: Vec<Spilled<Vec3>> = Vec::new();
     let mut out = Written {
-        spaces,
-        orientation,
+        frames: Arrays { spaces, orientation },
         goods: 0..ids.len() as u32,
         first_triangle: 0,
         spilled: &mut spilled,

@@ -12,6 +12,7 @@ use core::cmp::Ordering;
 use core::ops::Range;
 
 use super::attributes::Attributes;
+use super::frames::Arrays;
 use super::tspace::{threshold_cosine, Full};
 use super::{copy_to_degenerate, scratch_bytes, solve as solve_triangles, Buffers, FaceExtras, NONE};
 use crate::kernel::error::Error;
@@ -98,6 +99,7 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
         threads,
         &mut buffers,
         &mut corners,
+        None,
         Some(&mut extras),
         &mut report,
     )?;
@@ -135,7 +137,10 @@ pub(crate) fn solve(mesh: &FaceMesh, angular_threshold: f32, threads: u32) -> Re
     copy_to_degenerate(
         &mut buffers,
         &solved,
-        (&mut out.spaces, &mut out.preserving),
+        &mut Arrays {
+            spaces: &mut out.spaces,
+            orientation: &mut out.preserving,
+        },
         slot_of,
         one_degenerate,
         None,

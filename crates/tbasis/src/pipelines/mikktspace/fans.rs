@@ -20,6 +20,7 @@
 
 use super::components::{self, find, union, Settled};
 use super::faces::ORIENT_PRESERVING;
+use super::frames::Frames;
 use super::tspace::{self, Directions, Inputs, Space, Written};
 use crate::kernel::error::Error;
 use crate::kernel::parallel;
@@ -103,17 +104,18 @@ fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> 
     Lists { starts, corners }
 }
 
-/// Writes every good corner's tangent and orientation into `outputs` (per corner of every
+/// Writes every good corner's tangent and orientation into `frames` (per corner of every
 /// triangle), on the ranges of good triangles `ends`: each worker takes a range of welded vertices
 /// with about as many corners as the others, writes the corners in its range of good triangles and
-/// spills the others. `lists` is the memory for [`list`].
-pub(crate) fn evaluate_on_ranges(
+/// spills the others. `lists` is the memory for [`list`]. Everything it allocates, it allocates
+/// before the first corner is written: nothing fails after that.
+pub(crate) fn evaluate_on_ranges<F: Frames<Vec3>>(
     inputs: &Inputs,
     ids: &[[u32; 3]],
     last_run: Option<&LastRun>,
     ends: &[usize],
     (starts, corners): (&mut [u32], &mut [u32]),
-    outputs: (&mut [Vec3], &mut [u8]),
+    frames: &mut F,
 ) -> Result<Settled, Error> {
     let lists = list(ids, starts, corners);
     let welded_count = lists.starts.len() - 1;
@@ -123,11 +125,26 @@ pub(crate) fn evaluate_on_ranges(
             .map(|end| lists.starts.partition_point(|&s| (s as usize) < end).min(welded_count)),
     );
     let vertex_ends = vertex_ranges.ends();
-    let mut counts = [Settled::default(); parallel::MAX_RANGES];
     let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
-    let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut());
-    super::write_in_ranges(ends, inputs.order, outputs, parts, |out, ((first, &end), counts)| {
-        *counts = evaluate(inputs, (ids, last_run), &lists, first..end, &mut Fan::default(), out)?;
+    // Each worker's heap arrays, for its largest fan past the scan limit, and room to spill
+    // every corner of its fans.
+    let mut fans: [Fan; parallel::MAX_RANGES] = core::array::from_fn(|_| Fan::default());
+    let mut room = [0; parallel::MAX_RANGES];
+    for (((first, &end), fan), room) in first_vertices.clone().zip(vertex_ends).zip(&mut fans).zip(&mut room) {
+        let starts = &lists.starts[first..=end];
+        let largest = starts.windows(2).map(|w| (w[1] - w[0]) as usize).max().unwrap_or(0);
+        if !scanned(largest) {
+            fan.reserve(largest)?;
+        }
+        *room = (starts[starts.len() - 1] - starts[0]) as usize;
+    }
+    let mut counts = [Settled::default(); parallel::MAX_RANGES];
+    let parts = first_vertices.zip(vertex_ends).zip(counts.iter_mut().zip(&mut fans));
+    let triangles = super::triangle_ranges(ends, inputs.order, frames.corners() / 3);
+    let cuts = (ends, triangles.ends());
+    let frames = frames.split(triangles.ends());
+    super::write_in_ranges(cuts, frames, &room, parts, |out, ((first, &end), (counts, fan))| {
+        *counts = evaluate(inputs, (ids, last_run), &lists, first..end, fan, out)?;
         Ok(())
     })?;
     let mut settled = Settled::default();
@@ -187,7 +204,7 @@ fn evaluate(
     lists: &Lists,
     vertices: core::ops::Range<usize>,
     fan: &mut Fan,
-    out: &mut Written<Vec3>,
+    out: &mut Written<Vec3, impl Frames<Vec3>>,
 ) -> Result<Settled, Error> {
     let mut settled = Settled::default();
     let mut small = Small {
@@ -247,7 +264,7 @@ fn evaluate_fan(
     corners: &[u32],
     arrays: Arrays,
     edges: Option<&mut Vec<u64>>,
-    out: &mut Written<Vec3>,
+    out: &mut Written<Vec3, impl Frames<Vec3>>,
 ) -> Result<[usize; 2], Error> {
     let n = corners.len();
     let preserving = |i: usize| inputs.flags[corners[i] as usize / 3] & ORIENT_PRESERVING;
@@ -432,6 +449,8 @@ impl Fan {
         grow(&mut self.may_part, n)?;
         grow(&mut self.set_aside, n)?;
         grow(&mut self.members, n)?;
+        // Emptied first, so that room reserved once for the largest fan serves every later one.
+        self.edges.clear();
         self.edges.try_reserve(2 * n).map_err(|_| Error::OutOfMemory)
     }
 }

@@ -15,6 +15,7 @@ mod corner_terms;
 mod faces;
 pub(crate) mod faces_interface;
 mod fans;
+mod frames;
 mod groups;
 mod last_run;
 mod neighbors;
@@ -34,6 +35,7 @@ use glam::Vec3 as GlamVec3;
 use self::attributes::Attributes;
 use self::corner_terms::CornerTerms;
 use self::faces::GROUP_WITH_ANY;
+use self::frames::{Arrays, Frames};
 use self::groups::Groups;
 use self::neighbors::EdgeScratch;
 use self::tspace::Directions;
@@ -215,7 +217,10 @@ fn generate_corners(
     bytes: &mut [u8],
     report: &mut Report,
 ) -> Result<(), Error> {
-    let (buffers, _) = compute(mesh, options, bytes, report)?;
+    let (buffers, _, in_place) = compute(mesh, options, bytes, Some(&mut *output), report)?;
+    if in_place {
+        return Ok(());
+    }
     let write = |first: usize, mut part: StridedMut<[f32; 4]>| {
         for i in 0..part.len() {
             part.set(i, frame(&buffers, first + i));
@@ -224,7 +229,7 @@ fn generate_corners(
     let ranges = parallel::item_ranges(options.threads, mesh.corner_count(), 3);
     match ranges.ends() {
         [_] => write(0, output.reborrow()),
-        ends => parallel::run_ranges(ends, output.split(ends).into_iter(), write),
+        ends => parallel::run_ranges(ends, output.split(ends, 1).into_iter(), write),
     }
     Ok(())
 }
@@ -238,7 +243,7 @@ fn generate_vertices(
     bytes: &mut [u8],
     report: &mut Report,
 ) -> Result<(), Error> {
-    let (buffers, _) = compute(mesh, options, bytes, report)?;
+    let (buffers, _, _) = compute(mesh, options, bytes, None, report)?;
     let mut out = output.whole();
     for (v, &first) in buffers.slots[..mesh.vertex_count()].iter().enumerate() {
         let normal = GlamVec3::from_array(mesh.normals.get(v));
@@ -267,15 +272,17 @@ fn frame(buffers: &Buffers, c: usize) -> [f32; 4] {
     [x, y, z, if buffers.orientation[c] != 0 { 1.0 } else { -1.0 }]
 }
 
-/// Every corner's tangent and orientation (in the buffers laid out in `bytes`), the report, and
-/// (in `slots`) every vertex's first corner, and how the weld was done. Fails before anything
-/// reaches the caller's output.
+/// Every corner's tangent and orientation, the report, and (in `slots`) every vertex's first
+/// corner, and how the weld was done. The frames go to the caller's per-corner output `in_place`
+/// where the route allows it (then the third value is true), else to the buffers laid out in
+/// `bytes`. Fails before anything reaches the caller's output.
 fn compute<'a>(
     mesh: &Mesh,
     options: &Options,
     bytes: &'a mut [u8],
+    mut in_place: Option<&mut StridedMut<[f32; 4]>>,
     report: &mut Report,
-) -> Result<(Buffers<'a>, Routes), Error> {
+) -> Result<(Buffers<'a>, Routes, bool), Error> {
     if mesh.vertex_count() == 0 {
         // No scratch was asked for: any index is out of range, or there is nothing to do.
         if mesh.corner_count() > 0 {
@@ -286,7 +293,7 @@ fn compute<'a>(
             weld: WeldPath::ByValue,
             groups: GroupRoute::Search,
         };
-        return Ok((Buffers::take(&mut Arena::Count(0), 0, 0)?, routes));
+        return Ok((Buffers::take(&mut Arena::Count(0), 0, 0)?, routes, false));
     }
     let mut buffers = Buffers::take(&mut Arena::Carve(bytes), mesh.vertex_count(), mesh.corner_count())?;
     let (vertex_count, corner_count) = (mesh.vertex_count(), mesh.corner_count());
@@ -319,28 +326,65 @@ fn compute<'a>(
     if !in_range.into_inner() {
         return Err(mesh.index_error());
     }
-    // 2. mikktspace.c proper, steps 3 to 10 (policy REJECT refused a degenerate mesh before).
-    let path = if corner_count > 0 {
-        let tangents = core::mem::take(&mut buffers.tangents);
-        let solved = solve(&attributes, options.threads, &mut buffers, &mut *tangents, None, report)?;
-        let orientation = core::mem::take(&mut buffers.orientation);
-        let (spaces, corners) = ((&mut *tangents, &mut *orientation), |c: usize| c);
-        copy_to_degenerate(&mut buffers, &solved, spaces, corners, |_| false, Some(UNREACHED));
-        (buffers.tangents, buffers.orientation) = (tangents, orientation);
-        solved.routes
+    // 2. mikktspace.c proper, steps 3 to 9 (policy REJECT refused a degenerate mesh before).
+    let tangents = core::mem::take(&mut buffers.tangents);
+    let solved = if corner_count > 0 {
+        let in_place = in_place.as_deref_mut();
+        solve(
+            &attributes,
+            options.threads,
+            &mut buffers,
+            &mut *tangents,
+            in_place,
+            None,
+            report,
+        )?
     } else {
-        Routes {
+        let routes = Routes {
             weld: WeldPath::ByValue,
             groups: GroupRoute::Search,
+        };
+        Solved {
+            routes,
+            good: 0,
+            welded_count: 0,
+            in_place: false,
         }
     };
+    let orientation = core::mem::take(&mut buffers.orientation);
+    // 10 and 11, and the counts, where the frames are.
+    match in_place.filter(|_| solved.in_place) {
+        Some(output) => finish(mesh, options, &mut buffers, &solved, output, report),
+        None => {
+            let mut arrays = Arrays {
+                spaces: &mut *tangents,
+                orientation: &mut *orientation,
+            };
+            finish(mesh, options, &mut buffers, &solved, &mut arrays, report);
+        }
+    }
+    (buffers.tangents, buffers.orientation) = (tangents, orientation);
+    Ok((buffers, solved.routes, solved.in_place))
+}
+
+/// Steps 10 and 11 on the frames `solve` wrote, and the per-vertex counts.
+fn finish<F: Frames<Vec3>>(
+    mesh: &Mesh,
+    options: &Options,
+    buffers: &mut Buffers,
+    solved: &Solved,
+    frames: &mut F,
+    report: &mut Report,
+) {
+    // 10. Degenerate triangles' corners (DegenEpilogue).
+    copy_to_degenerate(buffers, solved, frames, |c: usize| c, |_| false, Some(UNREACHED));
     // 11. Policies other than LEGACY replace what no frame can be; then per-vertex counts.
     if options.degenerate_policy != DegeneratePolicy::Legacy {
-        repair::repair(mesh, options.degenerate_policy, buffers.tangents, buffers.slots, report);
+        repair::repair(mesh, options.degenerate_policy, frames, buffers.slots, report);
         report.abnormal_normals = frame::count_abnormal_normals(mesh);
     }
-    count_vertices(mesh, options.threads, &mut buffers, report);
-    Ok((buffers, path))
+    let frames = &*frames;
+    count_vertices(mesh, options.threads, buffers, |c| frames.get(c), report);
 }
 
 /// What mikktspace.c's own interface adds to a triangle mesh ([`faces_interface`]).
@@ -357,21 +401,24 @@ pub(crate) struct FaceExtras<'a> {
     pub write_order: &'a mut [u32],
 }
 
-/// How [`solve`] ended: the routes it took, the good triangles (the first of `order`) and the
-/// welded vertices.
+/// How [`solve`] ended: the routes it took, the good triangles (the first of `order`), the
+/// welded vertices, and whether the frames went to the caller's output in place.
 struct Solved {
     routes: Routes,
     good: usize,
     welded_count: usize,
+    in_place: bool,
 }
 
 /// Steps 3 to 9: mikktspace.c proper, every good triangle's corners into `spaces` and
-/// `b.orientation` (those no group reaches left as they were).
+/// `b.orientation` (those no group reaches left as they were), or, where the groups go fan by fan
+/// and `in_place` is given, into that per-corner output.
 fn solve<S: tspace::Space>(
     attributes: &Attributes,
     threads: u32,
     b: &mut Buffers,
     spaces: &mut [S],
+    in_place: Option<&mut StridedMut<[f32; 4]>>,
     mut extras: Option<&mut FaceExtras>,
     report: &mut Report,
 ) -> Result<Solved, Error> {
@@ -574,6 +621,8 @@ fn solve<S: tspace::Space>(
             face_of: None,
         };
         let outputs = (tangents, &mut *b.orientation);
+        let in_place = in_place.filter(|_| by_fans);
+        let written_in_place = in_place.is_some();
         let groups = if by_fans {
             let lists = (&mut groups.starts[..welded_count + 1], &mut groups.corners[..3 * good]);
             let last_run = last_i0.map(|last| fans::LastRun {
@@ -581,7 +630,15 @@ fn solve<S: tspace::Space>(
                 last,
                 neighbors,
             });
-            let settled = fans::evaluate_on_ranges(&inputs, ids, last_run.as_ref(), ranges.ends(), lists, outputs)?;
+            let (last_run, ends) = (last_run.as_ref(), ranges.ends());
+            let settled = match in_place {
+                Some(output) => fans::evaluate_on_ranges(&inputs, ids, last_run, ends, lists, output)?,
+                None => {
+                    let (spaces, orientation) = outputs;
+                    let arrays = &mut Arrays { spaces, orientation };
+                    fans::evaluate_on_ranges(&inputs, ids, last_run, ends, lists, arrays)?
+                }
+            };
             GroupRoute::Fans(settled)
         } else {
             // Corners of GROUP_WITH_ANY triangles that no group reaches keep the default.
@@ -596,6 +653,7 @@ fn solve<S: tspace::Space>(
             routes: Routes { weld: path, groups },
             good,
             welded_count,
+            in_place: written_in_place,
         });
     }
     let (neighbors, flags, assigned) = (&b.neighbors[..good], &mut b.flags[..good], &mut b.assigned[..good]);
@@ -645,11 +703,24 @@ fn solve<S: tspace::Space>(
     let first_groups = core::iter::once(0).chain(group_ends.iter().copied());
     let parts = parallel::split(&mut *groups.corners, member_ends.ends(), 1).zip(first_groups.zip(group_ends.iter()));
     let orientations = &*groups.orientation;
-    let outputs = (&mut *spaces, &mut *b.orientation);
+    let frames = &mut Arrays {
+        spaces: &mut *spaces,
+        orientation: &mut *b.orientation,
+    };
+    // A worker spills at most its groups' members.
+    let mut room = [0; parallel::MAX_RANGES];
+    for ((room, &end), start) in room
+        .iter_mut()
+        .zip(member_ends.ends())
+        .zip(core::iter::once(0).chain(member_ends.ends().iter().copied()))
+    {
+        *room = end - start;
+    }
+    let triangles = triangle_ranges(ends, order, frames.corners() / 3);
     write_in_ranges(
-        ends,
-        order,
-        outputs,
+        (ends, triangles.ends()),
+        frames.split(triangles.ends()),
+        &room,
         parts,
         |out, (corners, (first_group, &end_group))| {
             let base = starts[first_group] as usize;
@@ -668,6 +739,7 @@ fn solve<S: tspace::Space>(
         },
         good,
         welded_count,
+        in_place: false,
     })
 }
 
@@ -685,63 +757,82 @@ fn mark_near<'n>(ids: &[[u32; 3]], flags: &[u8], near: &'n mut [u32]) -> Option<
     any.then_some(&*near)
 }
 
-/// Runs `work(out, part)` for each range of good triangles `ends`, beside the others: `out` writes
-/// the corners of the range's good triangles in place in `spaces` and `orientation` (per corner of
-/// every triangle; good triangle `g` is triangle `order[g]`), and holds the others until every
-/// worker is done.
-fn write_in_ranges<S: tspace::Space, P: Send>(
-    ends: &[usize],
-    order: &[u32],
-    (spaces, orientation): (&mut [S], &mut [u8]),
-    parts: impl Iterator<Item = P>,
-    work: impl Fn(&mut tspace::Written<S>, P) -> Result<(), Error> + Sync,
-) -> Result<(), Error> {
-    // Each range's per-corner arrays begin with the triangle of its first good triangle.
-    let triangles = orientation.len() / 3;
-    let triangle_ranges = parallel::Ranges::from_ends(ends.iter().map(|&end| {
+/// Where each range of good triangles `ends` begins and ends in the triangles (good triangle `g`
+/// is triangle `order[g]`; there are `triangles` in all): the cuts of [`write_in_ranges`]'s
+/// frames.
+fn triangle_ranges(ends: &[usize], order: &[u32], triangles: usize) -> parallel::Ranges {
+    parallel::Ranges::from_ends(ends.iter().map(|&end| {
         if end == order.len() {
             triangles
         } else {
             order[end] as usize
         }
-    }));
-    let triangle_ends = triangle_ranges.ends();
+    }))
+}
+
+/// Runs `work(out, part)` for each range of good triangles `ends`, beside the others: `out` writes
+/// the corners of the range's good triangles in place in its part of `frames` (the per-corner
+/// frames of the triangles of [`triangle_ranges`], in order), and holds the others until every
+/// worker is done, with room for `room[i]` of them in range `i`'s, made before any worker starts.
+fn write_in_ranges<S: tspace::Space, G: Frames<S>, P: Send>(
+    (ends, triangle_ends): (&[usize], &[usize]),
+    frames: impl Iterator<Item = G>,
+    room: &[usize],
+    parts: impl Iterator<Item = P>,
+    work: impl Fn(&mut tspace::Written<S, G>, P) -> Result<(), Error> + Sync,
+) -> Result<(), Error> {
     let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
-    // Empty until a range spills: one range allocates nothing.
+    // One range spills nothing and allocates nothing.
     let mut spilled: [Vec<tspace::Spilled<S>>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    if ends.len() > 1 {
+        for (spilled, &room) in spilled.iter_mut().zip(room) {
+            spilled.try_reserve_exact(room).map_err(|_| Error::OutOfMemory)?;
+        }
+    }
+    let mut frames: [Option<G>; parallel::MAX_RANGES] = {
+        let mut frames = frames.map(Some);
+        core::array::from_fn(|_| frames.next().flatten())
+    };
     let mut outcomes: [Result<(), Error>; parallel::MAX_RANGES] = core::array::from_fn(|_| Ok(()));
-    let ranges = parallel::split(&mut *spaces, triangle_ends, 3)
-        .zip(parallel::split(&mut *orientation, triangle_ends, 3))
-        .zip(first_triangles.zip(ends.iter()))
+    let ranges = frames
+        .iter_mut()
+        .zip(first_triangles.clone().zip(ends.iter()))
         .zip(spilled.iter_mut().zip(outcomes.iter_mut()))
         .zip(parts);
     parallel::run_ranges(ends, ranges, |first, ranges| {
-        let ((((spaces, orientation), (first_triangle, &end)), (spilled, outcome)), part) = ranges;
+        let (((slot, (first_triangle, &end)), (spilled, outcome)), part) = ranges;
+        let Some(frames) = slot.take() else {
+            return;
+        };
         let mut out = tspace::Written {
-            spaces,
-            orientation,
+            frames,
             goods: first as u32..end as u32,
             first_triangle,
             spilled,
         };
         *outcome = work(&mut out, part);
+        *slot = Some(out.frames);
     });
     outcomes.into_iter().collect::<Result<(), Error>>()?;
     for &(corner, space, preserving) in spilled.iter().flatten() {
-        spaces[corner as usize] = space;
-        orientation[corner as usize] = preserving;
+        let triangle = corner as usize / 3;
+        let range = triangle_ends.partition_point(|&end| end <= triangle);
+        let first_triangle = first_triangles.clone().nth(range).unwrap_or(0);
+        if let Some(frames) = &mut frames[range] {
+            frames.set(corner as usize - 3 * first_triangle, space, preserving);
+        }
     }
     Ok(())
 }
 
 /// 10. Degenerate triangles copy the first good corner of the same welded vertex
-///     (DegenEpilogue): `spaces` and `orientation` hold what corner `c` gets at `slot_of(c)`;
+///     (DegenEpilogue): `frames` hold what corner `c` gets at `slot_of(c)`;
 ///     triangles `skip` names copy nothing; a corner with nothing to copy gets `unreached`, if
 ///     given (else it keeps what it holds).
 fn copy_to_degenerate<S: Copy>(
     b: &mut Buffers,
     solved: &Solved,
-    (spaces, orientation): (&mut [S], &mut [u8]),
+    frames: &mut impl Frames<S>,
     slot_of: impl Fn(usize) -> usize,
     skip: impl Fn(usize) -> bool,
     unreached: Option<(S, u8)>,
@@ -766,10 +857,10 @@ fn copy_to_degenerate<S: Copy>(
             let from = first_good[b.welded[corner] as usize];
             let to = slot_of(corner);
             if from != NONE {
-                let from = slot_of(from as usize);
-                (spaces[to], orientation[to]) = (spaces[from], orientation[from]);
+                let (space, preserving) = frames.get(slot_of(from as usize));
+                frames.set(to, space, preserving);
             } else if let Some((space, preserving)) = unreached {
-                (spaces[to], orientation[to]) = (space, preserving);
+                frames.set(to, space, preserving);
             }
         }
     }
@@ -871,8 +962,15 @@ struct WeldBuffers<'w> {
 
 /// Per vertex: its first corner (into `slots`), and the report's vertex counts: unreferenced,
 /// mirrored (corners of both signs) and split (corners that differ in any bit). Ranges of vertices
-/// on separate threads, each worker reading every corner and keeping those of its vertices.
-fn count_vertices(mesh: &Mesh, threads: u32, buffers: &mut Buffers, report: &mut Report) {
+/// on separate threads, each worker reading every corner's frame (`frame(c)`) and keeping those of
+/// its vertices.
+fn count_vertices(
+    mesh: &Mesh,
+    threads: u32,
+    buffers: &mut Buffers,
+    frame: impl Fn(usize) -> (Vec3, u8) + Sync,
+    report: &mut Report,
+) {
     const MIRRORED: u32 = 1;
     const SPLIT: u32 = 2;
     let vertex_count = mesh.vertex_count();
@@ -880,7 +978,6 @@ fn count_vertices(mesh: &Mesh, threads: u32, buffers: &mut Buffers, report: &mut
     let ends = ranges.ends();
     // Per range: unreferenced, mirrored and split vertices.
     let mut counts = [[0usize; 3]; parallel::MAX_RANGES];
-    let (tangents, orientation) = (&*buffers.tangents, &*buffers.orientation);
     let parts = parallel::split(&mut buffers.slots[..vertex_count], ends, 1)
         .zip(parallel::split(&mut buffers.table[..vertex_count], ends, 1))
         .zip(counts.iter_mut());
@@ -895,12 +992,11 @@ fn count_vertices(mesh: &Mesh, threads: u32, buffers: &mut Buffers, report: &mut
                 first[v] = c as u32;
                 continue;
             }
-            let f = first[v] as usize;
-            if orientation[f] != orientation[c] {
+            let ((first_tangent, first_orientation), (tangent, orientation)) = (frame(first[v] as usize), frame(c));
+            if first_orientation != orientation {
                 marks[v] |= MIRRORED;
             }
-            let same =
-                orientation[f] == orientation[c] && tangents[f].map(f32::to_bits) == tangents[c].map(f32::to_bits);
+            let same = first_orientation == orientation && first_tangent.map(f32::to_bits) == tangent.map(f32::to_bits);
             if !same {
                 marks[v] |= SPLIT;
             }

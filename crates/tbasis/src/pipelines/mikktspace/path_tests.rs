@@ -26,7 +26,7 @@ fn routes_of(
         .with_indices(indices);
     let options = Options::mikktspace().with_flip_v(flip_v);
     let mut bytes = vec![0u8; scratch_bytes(positions.len(), indices.len()).expect("a scratch size")];
-    let (_, routes) = compute(&mesh, &options, &mut bytes, &mut Report::default()).expect("a result");
+    let (_, routes, _) = compute(&mesh, &options, &mut bytes, None, &mut Report::default()).expect("a result");
     routes
 }
 
@@ -52,7 +52,8 @@ fn the_benchmark_torus_welds_by_value_and_groups_fan_by_fan() {
 
 /// The fans project their corners' directions in SIMD lanes ([`super::fans`]): every path this
 /// CPU supports gives the baseline's bits on the torus, which takes the fan route, on one thread
-/// and two.
+/// and two; and written in place into a per-corner output (two threads spill corners to each
+/// other's parts of it), the same frames as in the scratch's arrays.
 #[test]
 fn the_fans_give_the_same_bits_on_every_simd_path() {
     let torus = scenes::build(&scenes::SceneSpec::torus(20_000));
@@ -68,8 +69,10 @@ fn the_fans_give_the_same_bits_on_every_simd_path() {
             // Each run starts from other bytes: a corner some run leaves unwritten differs.
             fill = fill.wrapping_add(0x55);
             bytes.fill(fill);
-            let (buffers, routes) =
-                along(path, || compute(&mesh, &options, &mut bytes, &mut Report::default())).expect("a result");
+            let (buffers, routes, _) = along(path, || {
+                compute(&mesh, &options, &mut bytes, None, &mut Report::default())
+            })
+            .expect("a result");
             assert!(matches!(routes.groups, GroupRoute::Fans(_)), "{:?}", routes.groups);
             let bits: Vec<u32> = buffers.tangents.iter().flatten().map(|x| x.to_bits()).collect();
             (bits, buffers.orientation.to_vec())
@@ -80,6 +83,26 @@ fn the_fans_give_the_same_bits_on_every_simd_path() {
                 on_path(path) == baseline,
                 "{path:?} differs from the baseline on {threads} threads"
             );
+        }
+        let (tangents, orientation) = &baseline;
+        let frames: Vec<[u32; 4]> = tangents
+            .chunks(3)
+            .zip(orientation)
+            .map(|(t, &o)| [t[0], t[1], t[2], if o != 0 { 1.0f32 } else { -1.0 }.to_bits()])
+            .collect();
+        let mut written = vec![[0.0f32; 4]; mesh.corner_count()];
+        for &path in &paths {
+            fill = fill.wrapping_add(0x55);
+            bytes.fill(fill);
+            written.fill([f32::from_bits(u32::from_ne_bytes([fill; 4])); 4]);
+            let mut output = StridedMut::from_slice(&mut written);
+            let (_, _, in_place) = along(path, || {
+                compute(&mesh, &options, &mut bytes, Some(&mut output), &mut Report::default())
+            })
+            .expect("a result");
+            assert!(in_place, "the fan route wrote the scratch");
+            let bits: Vec<[u32; 4]> = written.iter().map(|f| f.map(f32::to_bits)).collect();
+            assert!(bits == frames, "{path:?} in place differs on {threads} threads");
         }
     }
 }

@@ -5,6 +5,7 @@
 
 use glam::Vec3 as GlamVec3;
 
+use super::frames::Frames;
 use super::NONE;
 use crate::kernel::frame::{
     fallback_tangent, is_unit_length, length_and_direction, orthonormalize, FRAME_TOLERANCE, NO_NORMAL_TANGENT,
@@ -83,26 +84,28 @@ fn nearest_valid(tangent: Vec3, normal: Normal) -> Option<Vec3> {
 pub(crate) fn repair(
     mesh: &Mesh,
     policy: DegeneratePolicy,
-    tangents: &mut [Vec3],
+    frames: &mut impl Frames<Vec3>,
     first_usable: &mut [u32],
     report: &mut Report,
 ) {
     // The corners' vertices are scattered: each normal is asked for ahead of its corner.
-    let corner_count = tangents.len();
+    let corner_count = frames.corners();
     let mut without_direction = 0usize;
-    for (c, tangent) in tangents.iter_mut().enumerate() {
+    for c in 0..corner_count {
         if c + PREFETCH_CORNERS < corner_count {
             mesh.normals.prefetch(mesh.indices.corner(c + PREFETCH_CORNERS));
         }
         let normal = Normal::of_vertex(mesh, mesh.indices.corner(c));
-        if is_kept(*tangent, normal) {
+        let (tangent, preserving) = frames.get(c);
+        if is_kept(tangent, normal) {
             continue;
         }
         report.repaired_corners += 1;
-        *tangent = nearest_valid(*tangent, normal).unwrap_or_else(|| {
+        let repaired = nearest_valid(tangent, normal).unwrap_or_else(|| {
             without_direction += 1;
             WITHOUT_DIRECTION
         });
+        frames.set(c, repaired, preserving);
     }
     if without_direction == 0 {
         return;
@@ -110,25 +113,27 @@ pub(crate) fn repair(
     // Rare: each vertex's first corner with a tangent, then the corners without one.
     let has_direction = |tangent: &Vec3| tangent[0].to_bits() != WITHOUT_DIRECTION[0].to_bits();
     first_usable.fill(NONE);
-    for (c, tangent) in tangents.iter().enumerate() {
+    for c in 0..corner_count {
         let first = &mut first_usable[mesh.indices.corner(c)];
-        if *first == NONE && has_direction(tangent) {
+        if *first == NONE && has_direction(&frames.get(c).0) {
             *first = c as u32;
         }
     }
     for c in 0..corner_count {
-        if has_direction(&tangents[c]) {
+        let (tangent, preserving) = frames.get(c);
+        if has_direction(&tangent) {
             continue;
         }
         let v = mesh.indices.corner(c);
         let normal = Normal::of_vertex(mesh, v);
         let fallback = || normal.unit.map_or(NO_NORMAL_TANGENT, fallback_tangent).to_array();
-        tangents[c] = match first_usable[v] {
+        let repaired = match first_usable[v] {
             donor if donor != NONE && policy == DegeneratePolicy::Inherit => {
-                nearest_valid(tangents[donor as usize], normal).unwrap_or_else(fallback)
+                nearest_valid(frames.get(donor as usize).0, normal).unwrap_or_else(fallback)
             }
             _ => fallback(),
         };
+        frames.set(c, repaired, preserving);
     }
 }
 
@@ -138,6 +143,7 @@ const WITHOUT_DIRECTION: Vec3 = [f32::NAN; 3];
 
 #[cfg(test)]
 mod tests {
+    use super::super::frames::Arrays;
     use super::*;
 
     #[test]
@@ -168,7 +174,10 @@ mod tests {
         repair(
             &mesh,
             DegeneratePolicy::Inherit,
-            &mut tangents,
+            &mut Arrays {
+                spaces: &mut tangents,
+                orientation: &mut [1; 6],
+            },
             &mut [0; 3],
             &mut report,
         );

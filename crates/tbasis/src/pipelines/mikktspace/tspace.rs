@@ -10,6 +10,7 @@
 #![forbid(unsafe_code)]
 
 use super::faces::GROUP_WITH_ANY;
+use super::frames::Frames;
 use crate::kernel::error::Error;
 use crate::kernel::vector::{add, dot, equal, normal, normalize_if_not_zero, project_normalized, scale, Packed, Vec3};
 
@@ -201,18 +202,18 @@ impl Default for Full {
 /// A corner (its index), its space and its orientation, for another worker's range.
 pub(crate) type Spilled<S> = (u32, S, u8);
 
-/// Where one worker writes: the corners of the good triangles `goods`, its part of the per-corner
-/// arrays beginning with triangle `first_triangle`; the corners of its groups outside its range
-/// go to `spilled`, written once every worker is done.
-pub(crate) struct Written<'a, S> {
-    pub spaces: &'a mut [S],
-    pub orientation: &'a mut [u8],
+/// Where one worker writes: the corners of the good triangles `goods`, in `frames`, its part of
+/// the per-corner frames beginning with triangle `first_triangle`; the corners of its groups
+/// outside its range go to `spilled`, written once every worker is done (it has room for all of
+/// them before the first is written: see [`super::write_in_ranges`]).
+pub(crate) struct Written<'a, S, F> {
+    pub frames: F,
     pub goods: core::ops::Range<u32>,
     pub first_triangle: usize,
     pub spilled: &'a mut Vec<Spilled<S>>,
 }
 
-impl<S: Copy> Written<'_, S> {
+impl<S: Copy, F: Frames<S>> Written<'_, S, F> {
     /// Writes corner `c` (`3 g + k` for corner `k` of good triangle `g`, triangle `order[g]`), or
     /// spills it when `g` is outside the range. Fails when memory for a spill cannot be had.
     #[inline(always)]
@@ -221,8 +222,7 @@ impl<S: Copy> Written<'_, S> {
         let triangle = order[good] as usize;
         if self.goods.contains(&(good as u32)) {
             let corner = 3 * (triangle - self.first_triangle) + k;
-            self.spaces[corner] = space;
-            self.orientation[corner] = u8::from(preserving);
+            self.frames.set(corner, space, u8::from(preserving));
         } else {
             self.spilled.try_reserve(1).map_err(|_| Error::OutOfMemory)?;
             self.spilled
@@ -234,17 +234,17 @@ impl<S: Copy> Written<'_, S> {
 
 /// Writes the space and orientation of the group's `corners` (`3 g + k` for corner `k` of good
 /// triangle `g`, one per triangle, in ascending order): those outside `out`'s range are spilled.
-/// Fails when memory for a spill or for the pairwise comparison cannot be had.
-pub(crate) fn evaluate_group<S: Space>(
+/// Fails when memory for a spill cannot be had.
+pub(crate) fn evaluate_group<S: Space, F: Frames<S>>(
     inputs: &Inputs,
     corners: &[u32],
     preserving: bool,
-    out: &mut Written<S>,
+    out: &mut Written<S, F>,
 ) -> Result<(), Error> {
     let corner = |j: usize| corners[j] as usize;
     let good = |j: usize| corners[j] / 3;
     let usable = |j: usize| inputs.flags[good(j) as usize] & GROUP_WITH_ANY == 0;
-    let write = |j: usize, space: S, out: &mut Written<S>| out.write(inputs.order, corner(j), space, preserving);
+    let write = |j: usize, space: S, out: &mut Written<S, F>| out.write(inputs.order, corner(j), space, preserving);
     let count = corners.len();
 
     // The usual case in one pass: the whole group's sum, and whether its directions lie in one
@@ -266,7 +266,10 @@ pub(crate) fn evaluate_group<S: Space>(
     }
 
     // Some directions may lie past the threshold: compare every pair, as mikktspace.c does. Two
-    // triangles of one face, or one without a usable derivative, always share a sub-group.
+    // triangles of one face, or one without a usable derivative, always share a sub-group. The C
+    // evaluates each distinct sub-group once and hands its space to every triangle whose
+    // sub-group has the same members; the sum over the same members in the same order has the
+    // same bits, so each member's is summed again here, which needs no memory.
     let within = |j: usize, k: usize| {
         let ([s_j, t_j], [s_k, t_k]) = (inputs.directions(corner(j)), inputs.directions(corner(k)));
         dot(s_j, s_k) > inputs.threshold && dot(t_j, t_k) > inputs.threshold
@@ -276,25 +279,12 @@ pub(crate) fn evaluate_group<S: Space>(
         inputs.face_of.map_or(triangle, |face_of| face_of[triangle as usize])
     };
     let member = |j: usize, k: usize| !usable(j) || !usable(k) || face(j) == face(k) || within(j, k);
-    let mut subgroups: Vec<(Vec<usize>, S)> = Vec::new();
-    subgroups.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
     for j in 0..count {
-        let mut own = Vec::new();
-        own.try_reserve_exact(count).map_err(|_| Error::OutOfMemory)?;
-        own.extend((0..count).filter(|&k| member(j, k)));
-        let space = match subgroups.iter().find(|(m, _)| *m == own) {
-            Some((_, space)) => *space,
-            None => {
-                let mut sum = S::Sum::default();
-                for &k in own.iter().filter(|&&k| usable(k)) {
-                    S::add(&mut sum, inputs, corner(k));
-                }
-                let space = S::finish(sum);
-                subgroups.push((own, space));
-                space
-            }
-        };
-        write(j, space, out)?;
+        let mut sum = S::Sum::default();
+        for k in (0..count).filter(|&k| usable(k) && member(j, k)) {
+            S::add(&mut sum, inputs, corner(k));
+        }
+        write(j, S::finish(sum), out)?;
     }
     Ok(())
 }
