@@ -44,6 +44,8 @@ enum Probe {
     MikktspaceC,
     /// A Linux kernel with transparent huge pages, which `madvise(MADV_HUGEPAGE)` needs.
     TransparentHugePages,
+    /// util-linux's `script`, able to run a command on a pseudo-terminal.
+    Terminal,
 }
 
 pub const CORPUS: Need = Need { probe: Probe::Corpus };
@@ -81,6 +83,7 @@ pub const MIKKTSPACE_C: Need = Need {
 pub const TRANSPARENT_HUGE_PAGES: Need = Need {
     probe: Probe::TransparentHugePages,
 };
+pub const TERMINAL: Need = Need { probe: Probe::Terminal };
 
 /// Where `.ci/run` installs the glTF Validator, below the repository root.
 pub const GLTF_VALIDATOR_MODULE: &str = "tools/gltf/node_modules_dir/node_modules/gltf-validator";
@@ -139,6 +142,7 @@ impl Need {
             Probe::GltfValidator => missing_gltf_validator(),
             Probe::TransparentHugePages => (!Path::new("/sys/kernel/mm/transparent_hugepage").exists())
                 .then(|| "a kernel with transparent huge pages (/sys/kernel/mm/transparent_hugepage)".to_string()),
+            Probe::Terminal => missing_terminal(),
             Probe::MikktspaceC => mikktspace_c_dir().is_none().then(|| {
                 format!(
                     "mikktspace.c and mikktspace.h of the crate {MIKKTSPACE_SYS}, which `cargo metadata` \
@@ -199,6 +203,17 @@ pub(crate) fn missing_programs(programs: &[(&str, &str)]) -> Option<String> {
     let mut packages: Vec<&str> = absent.iter().map(|(_, package)| *package).collect();
     packages.dedup();
     Some(format!("{} (Debian: {})", names.join(" and "), packages.join(", ")))
+}
+
+/// What running a command on a pseudo-terminal with `script -qec COMMAND /dev/null` lacks here.
+fn missing_terminal() -> Option<String> {
+    if !on_path("script") {
+        return Some("script (Debian: bsdutils)".to_string());
+    }
+    let mut probe = Command::new("script");
+    probe.args(["-qec", "true", "/dev/null"]).env("SHELL", "/bin/sh");
+    (!succeeds(&mut probe))
+        .then(|| "a pseudo-terminal, which `script -qec true /dev/null` cannot open here".to_string())
 }
 
 fn missing_python_venv() -> Option<String> {

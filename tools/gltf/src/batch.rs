@@ -1,7 +1,8 @@
-//! Many files at once: a pool of threads, one summary line per file in the order the files were
-//! given, a progress bar for large batches.
+//! Many files at once: a pool of threads (by default one per core), one summary line per file in
+//! the order the files were given, a progress bar for large batches.
 
 use std::io::Write;
+use std::num::NonZeroUsize;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
@@ -12,7 +13,37 @@ use crate::args::Job;
 use crate::convert::{convert, Outcome, Settings};
 
 /// From this many files on, a progress bar shows (on a terminal only).
-const LARGE_BATCH: usize = 8;
+pub const LARGE_BATCH: usize = 8;
+
+/// How a batch shares the cores: files at once, and threads for each file's primitives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Parallelism {
+    /// Files converted at once: the threads of [`run`].
+    pub workers: usize,
+    /// Threads for the primitives of each file ([`Settings::threads`]).
+    pub threads: usize,
+}
+
+impl Parallelism {
+    /// `jobs` files at once (`--jobs`), by default one per core, never more than there are
+    /// `files` nor fewer than one. Cores the file workers leave idle go to the primitives of each
+    /// file.
+    pub fn new(jobs: Option<NonZeroUsize>, cores: usize, files: usize) -> Self {
+        let workers = jobs.map_or(cores, usize::from).min(files).max(1);
+        Parallelism {
+            workers,
+            threads: (cores / workers).max(1),
+        }
+    }
+
+    /// [`Parallelism::new`] with the cores this process may use, as the standard library counts
+    /// them (`available_parallelism`: CPU affinity and cgroup quotas included), or 1 when that is
+    /// not known.
+    pub fn on_this_machine(jobs: Option<NonZeroUsize>, files: usize) -> Self {
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        Self::new(jobs, cores, files)
+    }
+}
 
 /// How a batch went.
 pub struct Totals {
@@ -207,6 +238,80 @@ mod tests {
             assert_eq!(printed, expected, "after file {file}");
         }
         assert!(!lines.ready());
+    }
+
+    /// `--jobs N`, given as a number.
+    fn jobs(n: usize) -> Option<NonZeroUsize> {
+        Some(NonZeroUsize::new(n).expect("not 0"))
+    }
+
+    #[test]
+    fn by_default_one_file_per_core_runs_at_once() {
+        for cores in [1, 2, 3, 8, 64] {
+            let parallelism = Parallelism::new(None, cores, 1000);
+            assert_eq!(
+                parallelism,
+                Parallelism {
+                    workers: cores,
+                    threads: 1
+                },
+                "{cores} cores"
+            );
+        }
+    }
+
+    #[test]
+    fn no_more_files_run_at_once_than_there_are_files() {
+        // The cores the files leave idle go to their primitives.
+        assert_eq!(Parallelism::new(None, 8, 3), Parallelism { workers: 3, threads: 2 });
+        assert_eq!(Parallelism::new(None, 8, 1), Parallelism { workers: 1, threads: 8 });
+        assert_eq!(Parallelism::new(jobs(4), 8, 2), Parallelism { workers: 2, threads: 4 });
+        // Never none, whatever is asked.
+        assert_eq!(Parallelism::new(None, 8, 0), Parallelism { workers: 1, threads: 8 });
+        assert_eq!(Parallelism::new(None, 0, 5), Parallelism { workers: 1, threads: 1 });
+    }
+
+    #[test]
+    fn jobs_sets_the_files_at_once_whatever_the_cores() {
+        assert_eq!(
+            Parallelism::new(jobs(2), 8, 100),
+            Parallelism { workers: 2, threads: 4 }
+        );
+        assert_eq!(
+            Parallelism::new(jobs(3), 8, 100),
+            Parallelism { workers: 3, threads: 2 }
+        );
+        assert_eq!(
+            Parallelism::new(jobs(1), 6, 100),
+            Parallelism { workers: 1, threads: 6 }
+        );
+        // More than the cores: each file gets one thread.
+        assert_eq!(
+            Parallelism::new(jobs(16), 4, 100),
+            Parallelism {
+                workers: 16,
+                threads: 1
+            }
+        );
+    }
+
+    #[test]
+    fn this_machine_counts_the_cores_this_process_may_use() {
+        let cores = std::thread::available_parallelism().map_or(1, usize::from);
+        assert_eq!(
+            Parallelism::on_this_machine(None, usize::MAX),
+            Parallelism {
+                workers: cores,
+                threads: 1
+            }
+        );
+        assert_eq!(
+            Parallelism::on_this_machine(jobs(1), usize::MAX),
+            Parallelism {
+                workers: 1,
+                threads: cores
+            }
+        );
     }
 
     #[test]

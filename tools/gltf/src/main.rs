@@ -19,18 +19,16 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let workers = args.jobs.map_or(cores, usize::from).min(jobs.len()).max(1);
+    let parallelism = batch::Parallelism::on_this_machine(args.jobs, jobs.len());
     let settings = convert::Settings {
         options: args.options(),
         overwrite: args.overwrite,
         allow_outside_uris: args.allow_outside_uris,
         replace_side_files: args.force,
-        // Cores the file workers leave idle go to the primitives of each file.
-        threads: (cores / workers).max(1),
+        threads: parallelism.threads,
         side_files: convert::SideFiles::default(),
     };
-    let totals = batch::run(&jobs, &settings, workers, args.quiet);
+    let totals = batch::run(&jobs, &settings, parallelism.workers, args.quiet);
     if totals.failed > 0 && jobs.len() > 1 {
         eprintln!("tbasis-gltf: {} of {} files failed", totals.failed, jobs.len());
     }
