@@ -4,6 +4,14 @@
 //! worker per 16384), whose triangle order follows the vertex order (each worker adds a range of
 //! vertices) or not (the workers measure chunks of triangles apart and add the terms after).
 //!
+//! The callback interface (`tbasis::mikktspace`, which the drop-in for mikktspace.c,
+//! `libtbasis_mikktspace`, runs) is held to the same on 1, 2 and 4 threads, on a grid of about
+//! 75,000 triangles (4 workers' worth), at 180 degrees and at 30: each of its allocations failing
+//! in turn makes the call return false with no set call, and without a failure it makes the set
+//! calls of one thread, bit for bit. It makes every allocation on the calling thread: on `W`
+//! threads, `W` more than on one (each worker's list of the corners it hands on to another, made
+//! before any worker starts).
+//!
 //! Its own binary without the test harness (`harness = false` in Cargo.toml): the allocations of
 //! the workers are counted process-wide, so no other thread may run. For each call, a first run
 //! records every allocation, on the calling thread and on the workers, with its backtrace; then,
@@ -14,12 +22,13 @@
 //! only that, and not failed. Every other one is the library's own. REJECT refuses the grid in
 //! order (its collapsed rows) after allocating, and computes on the shuffled one.
 //!
-//! `cargo test -p tbasis-ffi --test allocation_threads` runs it (about a minute in a debug build;
-//! the backtraces need its symbols); `ALLOCATION_CALLS=TEXT` keeps the calls whose description
-//! holds TEXT, such as `ALLOCATION_CALLS="ANGLE SKIP, shuffled grid, 2 threads"`.
+//! `cargo test -p tbasis-ffi --test allocation_threads` runs both tests (about a minute in a debug
+//! build; the backtraces need its symbols); `ALLOCATION_CALLS=TEXT` keeps the calls whose
+//! description holds TEXT, such as `ALLOCATION_CALLS="ANGLE SKIP, shuffled grid, 2 threads"` or
+//! `ALLOCATION_CALLS="30 degrees, 4 threads"`.
 //!
-//! The counts on these meshes, which the test checks ([`expected`]), per call, per vertex and per
-//! corner alike:
+//! The counts of the C calls on these meshes, which their test checks ([`expected`]), per call,
+//! per vertex and per corner alike:
 //!
 //! | method, policy | 1 thread | 2 threads, grid in order | 2 threads, shuffled |
 //! |---|---:|---:|---:|
@@ -159,21 +168,15 @@ fn test_grid(shuffled: bool) -> Case {
     case
 }
 
-/// Records what `call` allocates, then fails each of the library's allocations in turn: the call
-/// must return `TBASIS_ERROR_OUT_OF_MEMORY` and leave all `count` output elements untouched.
-fn fail_each_allocation(what: &str, call: &Entry, count: usize) -> Tally {
-    let mut output = vec![[UNTOUCHED; 4]; count];
-    let mut written = output.clone();
-    // Counted on a second call: the first may make one-time allocations.
-    call(&mut written);
+/// Runs `call` twice (the first may make one-time allocations) and records the second's
+/// allocations on every thread: its result, the tally, and the library's allocations, each as
+/// (made on the calling thread, its number counted from the call's start on that thread, or on
+/// the other threads together).
+fn record<R>(what: &str, mut call: impl FnMut() -> R) -> (R, Tally, Vec<(bool, usize)>) {
+    call();
     let (calling_before, other_before) = (allocations(), other_allocations());
-    let (status, records) = record_backtraces(|| call(&mut written));
+    let (result, records) = record_backtraces(&mut call);
     let (calling_made, other_made) = (allocations() - calling_before, other_allocations() - other_before);
-    // REJECT refuses the grid's collapsed rows, after allocating all the same.
-    assert!(
-        status == status::TBASIS_OK || status == status::TBASIS_ERROR_DEGENERATE_UV,
-        "{what}: status {status}"
-    );
     assert_eq!(
         records.len(),
         calling_made + other_made,
@@ -195,23 +198,48 @@ fn fail_each_allocation(what: &str, call: &Entry, count: usize) -> Tally {
             (Site::ThreadStart, false) => tally.thread_start_on_workers += 1,
         }
     }
+    (result, tally, library)
+}
+
+/// Runs `call` with the library's allocation `k` failing, one of [`record`]'s: on the calling
+/// thread, or on the others (`calling` false).
+fn failing<R>((calling, k): (bool, usize), call: impl FnOnce() -> R) -> R {
+    if calling {
+        fail_allocation(Some(allocations() + k));
+        let result = call();
+        fail_allocation(None);
+        result
+    } else {
+        fail_other_allocation(Some(other_allocations() + k));
+        let result = call();
+        fail_other_allocation(None);
+        result
+    }
+}
+
+/// Where [`failing`] made an allocation fail, for a message.
+fn thread_of(calling: bool) -> &'static str {
+    if calling {
+        "the calling thread's"
+    } else {
+        "the workers'"
+    }
+}
+
+/// Records what `call` allocates, then fails each of the library's allocations in turn: the call
+/// must return `TBASIS_ERROR_OUT_OF_MEMORY` and leave all `count` output elements untouched.
+fn fail_each_allocation(what: &str, call: &Entry, count: usize) -> Tally {
+    let mut output = vec![[UNTOUCHED; 4]; count];
+    let mut written = output.clone();
+    let (status, tally, library) = record(what, || call(&mut written));
+    // REJECT refuses the grid's collapsed rows, after allocating all the same.
+    assert!(
+        status == status::TBASIS_OK || status == status::TBASIS_ERROR_DEGENERATE_UV,
+        "{what}: status {status}"
+    );
     for (calling, k) in library {
-        let status = if calling {
-            fail_allocation(Some(allocations() + k));
-            let status = call(&mut output);
-            fail_allocation(None);
-            status
-        } else {
-            fail_other_allocation(Some(other_allocations() + k));
-            let status = call(&mut output);
-            fail_other_allocation(None);
-            status
-        };
-        let thread = if calling {
-            "the calling thread's"
-        } else {
-            "the workers'"
-        };
+        let status = failing((calling, k), || call(&mut output));
+        let thread = thread_of(calling);
         assert_out_of_memory(status, &output, &format!("{what}: {thread} allocation {k}"));
     }
     tally
@@ -257,27 +285,56 @@ const COMBINATIONS: [(u32, u32, &str); 17] = [
     (TBASIS_METHOD_MIKKTSPACE, TBASIS_DEGENERATE_REJECT, "MIKKTSPACE REJECT"),
 ];
 
-/// The one test of this binary, as `cargo test`'s filters and `--list` see it.
-const TEST: &str = "each_allocation_on_one_and_two_threads_may_fail_and_the_call_says_so";
+/// The tests of this binary, as `cargo test`'s filters and `--list` see them.
+const TESTS: [(&str, fn()); 2] = [
+    (
+        "each_allocation_on_one_and_two_threads_may_fail_and_the_call_says_so",
+        c_calls_on_one_and_two_threads,
+    ),
+    (
+        "each_allocation_of_the_callback_interface_on_several_threads_may_fail_with_no_set_call",
+        callback_interface_on_several_threads,
+    ),
+];
 
 fn main() {
-    // The test harness's arguments, as far as they apply to one test: `--list`, `--ignored` (it is
-    // not ignored) and name filters. `ALLOCATION_CALLS=TEXT` keeps the calls whose description
-    // holds TEXT.
+    // The test harness's arguments, as far as they apply here: `--list`, `--ignored` (no test is
+    // ignored), `--exact` and name filters. `ALLOCATION_CALLS=TEXT` keeps the calls whose
+    // description holds TEXT.
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.iter().any(|arg| arg == "--list") {
-        println!("{TEST}: test");
-        return;
-    }
     let filters: Vec<&String> = args.iter().filter(|arg| !arg.starts_with('-')).collect();
-    if args.iter().any(|arg| arg == "--ignored")
-        || !(filters.is_empty() || filters.iter().any(|f| TEST.contains(f.as_str())))
-    {
-        println!("running 0 tests");
+    let exact = args.iter().any(|arg| arg == "--exact");
+    let chosen: Vec<(&str, fn())> = TESTS
+        .into_iter()
+        .filter(|(name, _)| {
+            let matches = |filter: &&String| {
+                if exact {
+                    name == filter
+                } else {
+                    name.contains(filter.as_str())
+                }
+            };
+            !args.iter().any(|arg| arg == "--ignored") && (filters.is_empty() || filters.iter().any(matches))
+        })
+        .collect();
+    if args.iter().any(|arg| arg == "--list") {
+        for (name, _) in chosen {
+            println!("{name}: test");
+        }
         return;
     }
-    println!("running 1 test");
+    let plural = if chosen.len() == 1 { "" } else { "s" };
+    println!("running {} test{plural}", chosen.len());
     mark_calling_thread();
+    for (name, test) in chosen {
+        test();
+        println!("test {name} ... ok");
+    }
+}
+
+/// Every C call of the module's table, on one thread and two, each of its allocations failing in
+/// turn.
+fn c_calls_on_one_and_two_threads() {
     let filter = std::env::var("ALLOCATION_CALLS").ok();
     let mut table = Vec::new();
     for shuffled in [false, true] {
@@ -330,5 +387,161 @@ fn main() {
         assert_eq!(table.len(), 2 * 2 * COMBINATIONS.len() * 2);
         assert!(thread_starts > 0, "no thread started: the calls ran on one thread");
     }
-    println!("test {TEST} ... ok");
+}
+
+/// Cells a side of the callback interface's grid: 256 x 160 faces, about 75,000 triangles, so
+/// that 4 threads get 4 workers (one per 16,384 triangles) wherever the work is split.
+const FACE_GRID: (usize, usize) = (256, 160);
+
+/// One set call: face, vertex, and the bits of the tangent, the bitangent, the magnitudes and
+/// the orientation.
+type SetCall = (usize, usize, [u32; 9]);
+
+/// The callback interface's mesh, a grid of cells, face `k` on cell `k`: a quad, or a triangle
+/// (every 11th from 5), or a face of 5 vertices, ignored (every 13th from 0: face 0 is one, so
+/// the interface reads the first position apart). A mirror seam down the middle column, and rows
+/// 60 to 62 collapsed to one `v`, as in [`test_grid`]. Every set call is recorded in room made
+/// beforehand, so that the geometry allocates nothing during a call.
+struct FaceGrid {
+    cols: usize,
+    rows: usize,
+    set: Vec<SetCall>,
+}
+
+impl FaceGrid {
+    fn new((cols, rows): (usize, usize)) -> FaceGrid {
+        let mut grid = FaceGrid {
+            cols,
+            rows,
+            set: Vec::new(),
+        };
+        let calls = (0..cols * rows)
+            .map(|face| grid.size(face))
+            .filter(|&size| size == 3 || size == 4)
+            .sum();
+        grid.set = Vec::with_capacity(calls);
+        grid
+    }
+
+    fn size(&self, face: usize) -> usize {
+        if face % 13 == 0 {
+            5
+        } else if face % 11 == 5 {
+            3
+        } else {
+            4
+        }
+    }
+
+    /// The grid point of a face's vertex.
+    fn point(&self, face: usize, vert: usize) -> (f32, f32) {
+        let (i, j) = (face % self.cols, face / self.cols);
+        let (di, dj) = [(0, 0), (1, 0), (1, 1), (0, 1)][vert % 4];
+        ((i + di) as f32, (j + dj) as f32)
+    }
+
+    /// `generate_tangents_with` at `angular_threshold` on `threads`, the set calls in `self.set`.
+    fn generate(&mut self, angular_threshold: f32, threads: u32) -> bool {
+        self.set.clear();
+        let settings = tbasis::mikktspace::Settings {
+            angular_threshold,
+            threads,
+        };
+        tbasis::mikktspace::generate_tangents_with(self, &settings)
+    }
+}
+
+impl tbasis::mikktspace::Geometry for FaceGrid {
+    fn num_faces(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    fn num_vertices_of_face(&self, face: usize) -> usize {
+        self.size(face)
+    }
+
+    fn position(&self, face: usize, vert: usize) -> [f32; 3] {
+        let (x, y) = self.point(face, vert);
+        [x, y, 0.25 * (x * 0.1).sin()]
+    }
+
+    fn normal(&self, _face: usize, _vert: usize) -> [f32; 3] {
+        [0.0, 0.0, 1.0]
+    }
+
+    fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
+        let (x, y) = self.point(face, vert);
+        let v = if (60.0..=62.0).contains(&y) { 61.0 } else { y };
+        [(x - self.cols as f32 / 2.0).abs() / 16.0, v / 16.0]
+    }
+
+    fn set_tangent(&mut self, t: [f32; 3], b: [f32; 3], s: f32, m: f32, keeps: bool, face: usize, vert: usize) {
+        assert!(
+            self.set.len() < self.set.capacity(),
+            "more set calls than faces' vertices"
+        );
+        let bits = [t[0], t[1], t[2], b[0], b[1], b[2], s, m, f32::from(u8::from(keeps))].map(f32::to_bits);
+        self.set.push((face, vert, bits));
+    }
+}
+
+/// The callback interface (`tbasis::mikktspace`, which the drop-in `libtbasis_mikktspace` runs)
+/// on 1, 2 and 4 threads, at 180 degrees and at 30 (the sub-group search): the same set calls on
+/// every count, bit for bit; on 2 and 4 the workers start; and each of the library's allocations,
+/// on the calling thread or on a worker, failing in turn makes the call return false with no set
+/// call.
+fn callback_interface_on_several_threads() {
+    let filter = std::env::var("ALLOCATION_CALLS").ok();
+    let mut grid = FaceGrid::new(FACE_GRID);
+    let mut calls = 0;
+    for threshold in [180.0, 30.0] {
+        assert!(grid.generate(threshold, 1), "{threshold} degrees, 1 thread");
+        let one_thread = grid.set.clone();
+        assert_eq!(one_thread.len(), grid.set.capacity(), "a set call per face vertex");
+        // The tally on one thread, then on the last count.
+        let (mut single, mut before) = (None, None);
+        for threads in [1, 2, 4] {
+            let what = format!("generate_tangents_with, {threshold} degrees, {threads} threads");
+            if filter.as_ref().is_some_and(|filter| !what.contains(filter.as_str())) {
+                continue;
+            }
+            let (ok, tally, library) = record(&what, || grid.generate(threshold, threads));
+            assert!(ok, "{what}: returned false");
+            assert!(grid.set == one_thread, "{what}: other set calls than on one thread");
+            for &(calling, k) in &library {
+                let ok = failing((calling, k), || grid.generate(threshold, threads));
+                let thread = thread_of(calling);
+                assert!(
+                    !ok && grid.set.is_empty(),
+                    "{what}: {thread} allocation {k} failed, yet the call returned {ok} after {} set calls",
+                    grid.set.len()
+                );
+            }
+            eprintln!("{what}: {tally:?}");
+            assert!(tally.calling >= 10, "{what}: {tally:?}");
+            // Every allocation is made on the calling thread, the workers' included: on several
+            // threads, one list per worker of the corners it hands on to another, made before
+            // any worker starts.
+            assert_eq!(tally.workers, 0, "{what}: {tally:?}");
+            let single: &Tally = single.get_or_insert(tally);
+            let lists = if threads == 1 { 0 } else { threads as usize };
+            assert_eq!(tally.calling, single.calling + lists, "{what}: {tally:?}");
+            // Threads are started from the calling thread alone, more of them on 4 threads than
+            // on 2: the work is split.
+            assert_eq!(tally.thread_start_on_workers, 0, "{what}: {tally:?}");
+            if threads == 1 {
+                assert_eq!(tally.thread_start, 0, "{what}: one thread started threads");
+            }
+            let fewer = before.map_or(0, |before: Tally| before.thread_start);
+            assert!(
+                tally.thread_start > fewer || threads == 1,
+                "{what}: {tally:?} after {before:?}"
+            );
+            before = Some(tally);
+            calls += 1;
+        }
+    }
+    if filter.is_none() {
+        assert_eq!(calls, 6);
+    }
 }

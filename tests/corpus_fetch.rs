@@ -195,4 +195,82 @@ fn fetch_corpus_fetches_every_file_from_a_mirror_and_refuses_a_corrupted_one() {
     let output = run(check, "scripts/fetch-corpus --check on a changed file");
     assert_eq!(output.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&output.stderr).contains(victim.as_str()));
+
+    // The Blender-made files, absent from the mirror: without `blender` on PATH the script says
+    // how to make them; with one, it runs it (here a stand-in that copies the corpus's files).
+    std::fs::write(dest.join(victim), std::fs::read(corpus.join(victim)).unwrap()).unwrap();
+    let derived: Vec<&String> = files
+        .iter()
+        .filter(|(_, fetch)| fetch.starts_with("blender:"))
+        .map(|(path, _)| path)
+        .collect();
+    assert!(!derived.is_empty(), "the manifests list no Blender-made file");
+    for path in &derived {
+        std::fs::remove_file(mirror.join(path)).unwrap();
+        std::fs::remove_file(dest.join(path)).unwrap();
+    }
+    let without_blender = std::env::join_paths(
+        std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())
+            .filter(|dir| !dir.join("blender").exists()),
+    )
+    .unwrap();
+    let mut fetch = script();
+    fetch
+        .arg("--mirror")
+        .arg(&mirror)
+        .arg("--dest")
+        .arg(&dest)
+        .env("PATH", &without_blender);
+    let output = run(fetch, "scripts/fetch-corpus without Blender");
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "a missing Blender-made file must fail the fetch"
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    for path in &derived {
+        let hint = format!("{path}: made with Blender 3.4.1, which is not on PATH");
+        assert!(stderr.contains(&hint), "no `{hint}`: {stderr}");
+        assert!(stderr.contains("corpus/derive.py"), "no way to make {path}: {stderr}");
+    }
+
+    let tools = fresh_dir("blender-stand-in");
+    let mut stand_in = String::from("#!/bin/sh\nif [ \"$1\" = --version ]; then echo 'Blender 3.4.1'; exit 0; fi\n");
+    stand_in.push_str("for work in \"$@\"; do :; done\n");
+    for path in &derived {
+        let (from, to) = (corpus.join(path), Path::new("$work").join(path));
+        stand_in.push_str(&format!("mkdir -p \"$(dirname \"{}\")\"\n", to.display()));
+        stand_in.push_str(&format!("cp '{}' \"{}\"\n", from.display(), to.display()));
+    }
+    let blender = tools.join("blender");
+    std::fs::write(&blender, stand_in).unwrap();
+    let mut permissions = std::fs::metadata(&blender).unwrap().permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut permissions, 0o755);
+    std::fs::set_permissions(&blender, permissions).unwrap();
+    let with_stand_in =
+        std::env::join_paths(std::iter::once(tools.clone()).chain(std::env::split_paths(&without_blender))).unwrap();
+    let mut fetch = script();
+    fetch
+        .arg("--mirror")
+        .arg(&mirror)
+        .arg("--dest")
+        .arg(&dest)
+        .env("PATH", &with_stand_in);
+    let output = run_ok(fetch, "scripts/fetch-corpus with a Blender on PATH");
+    let expected = format!(
+        "{} files fetched, {} already there",
+        derived.len(),
+        files.len() - derived.len()
+    );
+    assert!(
+        String::from_utf8_lossy(&output.stdout).contains(&expected),
+        "Blender's files were not made: {}",
+        String::from_utf8_lossy(&output.stdout)
+    );
+    for path in &derived {
+        assert!(
+            std::fs::read(dest.join(path)).unwrap() == std::fs::read(corpus.join(path)).unwrap(),
+            "{path}"
+        );
+    }
 }

@@ -143,6 +143,17 @@ fn install_staged(prefix: &Path, stage: Option<&Path>) {
             stdout_of(&output)
         );
     }
+    // Where the files are not staged, the script ends by saying how programs find the library.
+    let hint = format!(
+        "elsewhere link with -Wl,-rpath,{}/lib or set LD_LIBRARY_PATH",
+        prefix.display()
+    );
+    assert_eq!(
+        stdout_of(&output).contains(&hint),
+        stage.is_none(),
+        "scripts/install.sh, DESTDIR {stage:?}: the loader's hint `{hint}`:\n{}",
+        stdout_of(&output)
+    );
 }
 
 /// The C libraries: `lib{name}.so`, `lib{name}.a`, `include/{name}.h`, `{name}.pc`.

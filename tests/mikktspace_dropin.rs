@@ -8,7 +8,8 @@
 //! return value, the number of set calls and a digest of every argument of every set call, must
 //! be the same. The drop-in's driver also runs under AddressSanitizer + UBSan and under valgrind.
 //! Beside it: the library's exports, its header's ABI, the contract the header states
-//! (`c_tests/mikktspace/contract.c`), a panic inside the boundary, and the sample program of the
+//! (`c_tests/mikktspace/contract.c`), the worker threads each call starts
+//! (`c_tests/mikktspace/workers.c`), a panic inside the boundary, and the sample program of the
 //! README (`examples/mikktspace`) built with mikktspace.c and relinked.
 //!
 //! A test that needs a missing tool says it is skipped, with the tool named, except under CI, where
@@ -621,6 +622,33 @@ fn the_dropin_keeps_the_contract_of_its_header() {
     if needs::VALGRIND.found_or_skip() {
         check(c_build::valgrind(&plain), "the contract checks under valgrind");
     }
+}
+
+/// `c_tests/mikktspace/workers.c`: the worker threads each call starts, counted by the program's
+/// own `pthread_create` and `pthread_join`, which the shared library's calls reach first: a call
+/// keeps the count it read when it started, whatever is set during it, and two calls at once each
+/// start the workers they start alone, at most as many at once as the count, with the set calls
+/// of one thread.
+#[test]
+fn each_call_reads_the_thread_count_when_it_starts_and_has_its_own_workers() {
+    let dir = c_build::work_dir(SUITE, "workers");
+    let lib = library_dir();
+    let exe = dir.join("workers");
+    let mut command = compiler(false, &dir);
+    command.arg(c_tests("workers.c")).args(C_FLAGS).arg("-pthread");
+    command.arg("-I").arg(Path::new(CRATE_DIR).join("include"));
+    command.arg("-L").arg(&lib).arg("-ltbasis_mikktspace").arg("-ldl");
+    command.arg(format!("-Wl,-rpath,{}", lib.display()));
+    command.arg("-o").arg(&exe);
+    run_ok(command, "compiling c_tests/mikktspace/workers.c");
+    let output = run(Command::new(&exe), "the worker counts");
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    let summary = stdout.lines().last().unwrap_or_default();
+    assert!(
+        output.status.success() && summary.ends_with(" passed, 0 failed"),
+        "the worker counts: {}, {summary}",
+        output.status
+    );
 }
 
 /// With the test-only feature `fault-injection` and `TBASIS_INJECT_PANIC` set, both entry points

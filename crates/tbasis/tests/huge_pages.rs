@@ -1,15 +1,74 @@
 //! The README's "Memory": on Linux (x86-64 and AArch64) the working memory the library allocates
-//! asks for huge pages (`madvise(MADV_HUGEPAGE)` on its 2 MiB-aligned part) when it is 32 MiB or
-//! more, and smaller memory does not. Seen through a `ScratchBuffer`, which keeps its memory
-//! between calls: the kernel lists the advice as `hg` among a mapping's `VmFlags` in
-//! `/proc/self/smaps`. One test in its own file, so that no other test allocates meanwhile.
+//! for method MIKKTSPACE (a call's without caller scratch, and the callback interface's) and for a
+//! `ScratchBuffer` asks for huge pages (`madvise(MADV_HUGEPAGE)` on its 2 MiB-aligned part) when it
+//! is 32 MiB or more, and smaller memory does not. The kernel lists the advice as `hg` among a
+//! mapping's `VmFlags` in `/proc/self/smaps`: read after a `ScratchBuffer`'s call, which keeps its
+//! memory, and, for a call's own memory, by this file's allocator just before that memory is
+//! freed. Its own file, so that no other test's allocations come in between.
 #![cfg(all(target_os = "linux", any(target_arch = "x86_64", target_arch = "aarch64")))]
 
-use tbasis::{scratch_size_for, Options, Output, ScratchBuffer};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+
+use tbasis::{generate, scratch_size_for, Options, Output, ScratchBuffer};
+use tbasis_test_support::face_meshes::{tbasis_calls, FaceMesh, Run};
 use tbasis_test_support::needs;
 use tbasis_test_support::shapes::flat_grid;
 
 const MIB: usize = 1 << 20;
+
+/// Frees of at least 32 MiB while [`RECORDING`] is on: (bytes, whether the advice was on them).
+static FREED_LARGE: Mutex<Vec<(usize, bool)>> = Mutex::new(Vec::new());
+static RECORDING: AtomicBool = AtomicBool::new(false);
+/// The tests take turns: each compares the mappings before and after its own allocations.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
+thread_local! {
+    /// Set while the allocator itself reads `/proc/self/smaps`, whose allocations it passes on.
+    static INSIDE: Cell<bool> = const { Cell::new(false) };
+}
+
+/// The system's allocator, which looks at each large block's mappings before freeing it.
+struct LooksBeforeFreeing;
+
+// SAFETY: every call goes to `System` with the caller's arguments unchanged.
+unsafe impl GlobalAlloc for LooksBeforeFreeing {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        System.alloc(layout)
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        System.alloc_zeroed(layout)
+    }
+    unsafe fn dealloc(&self, pointer: *mut u8, layout: Layout) {
+        if layout.size() >= 32 * MIB && RECORDING.load(Ordering::SeqCst) && !INSIDE.with(Cell::get) {
+            INSIDE.with(|inside| inside.set(true));
+            let (start, end) = (pointer as usize, pointer as usize + layout.size());
+            let advised = advised_mappings()
+                .iter()
+                .any(|&(at, len)| at >= start && at + len <= end && len >= layout.size() - 4 * MIB);
+            FREED_LARGE.lock().unwrap().push((layout.size(), advised));
+            INSIDE.with(|inside| inside.set(false));
+        }
+        System.dealloc(pointer, layout)
+    }
+    unsafe fn realloc(&self, pointer: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        System.realloc(pointer, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: LooksBeforeFreeing = LooksBeforeFreeing;
+
+/// What `call` freed of 32 MiB or more, and whether each was advised when it was freed.
+fn large_frees(call: impl FnOnce()) -> Vec<(usize, bool)> {
+    FREED_LARGE.lock().unwrap().clear();
+    RECORDING.store(true, Ordering::SeqCst);
+    call();
+    RECORDING.store(false, Ordering::SeqCst);
+    std::mem::take(&mut *FREED_LARGE.lock().unwrap())
+}
 
 /// The mappings of this process advised for huge pages, as (start, length).
 fn advised_mappings() -> Vec<(usize, usize)> {
@@ -44,6 +103,7 @@ fn scratch_of_32_mib_or_more_asks_for_huge_pages_and_smaller_does_not() {
     if !needs::TRANSPARENT_HUGE_PAGES.found_or_skip() {
         return;
     }
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let options = Options::mikktspace();
     // Method MIKKTSPACE's scratch is about 125 bytes a corner: about 19 MB, then 49 MB.
     for (quads, large) in [(160, false), (256, true)] {
@@ -71,5 +131,55 @@ fn scratch_of_32_mib_or_more_asks_for_huge_pages_and_smaller_does_not() {
             assert!(advised.is_empty(), "{needed} bytes: advised mappings {advised:x?}");
         }
         drop(scratch);
+    }
+}
+
+#[test]
+fn mikktspace_calls_without_scratch_ask_for_huge_pages_from_32_mib() {
+    if !needs::TRANSPARENT_HUGE_PAGES.found_or_skip() {
+        return;
+    }
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let options = Options::mikktspace();
+    for (quads, large) in [(160, false), (256, true)] {
+        let grid = flat_grid("grid", quads, quads, 1.0 / quads as f32);
+        let mesh = grid.mesh();
+        let needed = scratch_size_for(&mesh, &options).expect("a size");
+        let mut tangents = vec![[0.0f32; 4]; grid.vertex_count()];
+        let freed = large_frees(|| {
+            generate(&mesh, &options, &mut Output::new(tangents.as_mut_slice())).expect("generated");
+        });
+        // The call's working memory is its one allocation of that size.
+        let working = freed.iter().filter(|f| f.0 == needed).collect::<Vec<_>>();
+        if large {
+            assert_eq!(
+                working,
+                [&(needed, true)],
+                "{quads} x {quads} quads: frees of 32 MiB or more {freed:?}"
+            );
+        } else {
+            assert!(
+                working.is_empty(),
+                "{quads} x {quads} quads: frees of 32 MiB or more {freed:?}"
+            );
+        }
+
+        // The callback interface, on the same triangles: its memory is sized per face vertex.
+        let corners = grid.indices.as_deref().expect("indexed");
+        let texcoords = grid.texcoords.as_deref().expect("texture coordinates");
+        let faces = FaceMesh::from_triangles(
+            "grid".into(),
+            [&grid.positions, &grid.normals],
+            texcoords,
+            corners,
+            true,
+        );
+        let freed = large_frees(|| assert!(tbasis_calls(&faces, Run::Default).0));
+        let advised = freed.iter().filter(|f| f.1).count();
+        assert_eq!(
+            advised,
+            usize::from(large),
+            "{quads} x {quads} quads, callbacks: frees of 32 MiB or more {freed:?}"
+        );
     }
 }

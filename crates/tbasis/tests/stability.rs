@@ -5,7 +5,9 @@
 //!
 //! Every mesh here comes from `tbasis_test_support::cases`, whose `all_cases()` the C harness runs as well.
 
-use tbasis::{DegeneratePolicy as Policy, ErrorKind, Method, Options, Output, Report, StridedMut};
+use tbasis::{
+    DegeneratePolicy as Policy, ErrorKind, Method, Options, Output, Report, StridedMut, DEFAULT_DEGENERATE_THRESHOLD,
+};
 use tbasis_test_support::cases::{self, Attribute, Case, BAD_VALUES, BAD_VERTEX, BAND_CYLINDER, BAND_ROWS};
 use tbasis_test_support::invariants::{check_invariants, cross, dot, unit_normal};
 use tbasis_test_support::run::{generate_into, Run};
@@ -194,6 +196,40 @@ fn uvs_scaled_to_1e_minus_20_and_1e20() {
             for (v, (a, b)) in scaled.tangents.iter().zip(&unscaled.tangents).enumerate() {
                 let close = (0..3).all(|k| (a[k] - b[k]).abs() <= 1e-5) && a[3] == b[3];
                 assert!(close, "{} {policy}: vertex {v}: {a:?} vs unscaled {b:?}", case.name);
+            }
+        }
+    }
+}
+
+/// The README's degenerate test: its shape quality `q` does not change with the UVs' rotation or the
+/// order of a triangle's corners, but for rounding. One triangle at a time, for UV triangles of
+/// `q` at least twice or at most half the threshold, the test's outcome is the same at every
+/// angle and in every corner order, on either side of the threshold.
+#[test]
+fn degenerate_test_ignores_uv_rotation_and_corner_order() {
+    let threshold = DEFAULT_DEGENERATE_THRESHOLD;
+    // A UV triangle (0, 0), (1, 0), (0.5, h) has q = 2 sqrt(3) h / (1.5 + 2 h^2).
+    let qualities = [1e-7f32, 2.5e-6, 5e-6, 2e-5, 4e-5, 1e-3, 0.8];
+    let orders: [[u32; 3]; 3] = [[0, 1, 2], [1, 2, 0], [0, 2, 1]];
+    for q in qualities {
+        let h = q * 1.5 / (2.0 * 3f32.sqrt());
+        for angle in [0.0f32, 0.3, 1.0, 2.5, 4.0] {
+            let (sin, cos) = angle.sin_cos();
+            let turn = |[u, v]: [f32; 2]| [0.37 + cos * u - sin * v, 0.61 + sin * u + cos * v];
+            for order in orders {
+                let case = Case {
+                    name: format!("q {q:e}, angle {angle}, corners {order:?}"),
+                    positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.866, 0.0]],
+                    normals: vec![[0.0, 0.0, 1.0]; 3],
+                    texcoords: Some([[0.0, 0.0], [1.0, 0.0], [0.5, h]].map(turn).to_vec()),
+                    indices: Some(order.to_vec()),
+                };
+                for method in [Method::Angle, Method::Lengyel] {
+                    let run = run_with(&case, &Options::default().with_method(method).with_policy(Policy::Skip));
+                    assert_eq!(run.result, Ok(()), "{}", case.name);
+                    let degenerate = usize::from(q < threshold);
+                    assert_eq!(run.report.degenerate_triangles, degenerate, "{} {method:?}", case.name);
+                }
             }
         }
     }

@@ -284,4 +284,23 @@ mod tests {
             assert_eq!(preserving, 0, "the last write's orientation");
         }
     }
+
+    /// Past INT_MAX / 4 face vertices in all (mikktspace.c would take them), the call fails before
+    /// it reads anything: the slots stay clear of the sentinels. The positions are fresh zero
+    /// memory the test never touches, 6.4 GB of address space and no more pages than a few.
+    #[test]
+    fn more_than_int_max_over_4_face_vertices_are_refused() {
+        let slots = MAX_SLOTS + 1;
+        let mut bytes = zeroed_bytes(slots * size_of::<Vec3>() + align_of::<Vec3>()).expect("address space");
+        let positions: &[Vec3] = Arena::Carve(&mut bytes).take(slots).expect("carved");
+        let mesh = FaceMesh {
+            positions,
+            normals: &[],
+            texcoords: &[],
+            faces: &[(0, 0)],
+            index_zero: None,
+        };
+        assert_eq!(MAX_SLOTS, 536_870_911);
+        assert!(matches!(solve(&mesh, 180.0, 1), Err(Error::SizeOverflow)));
+    }
 }
