@@ -1,32 +1,12 @@
 #include "check.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-long checks_passed = 0;
-long checks_failed = 0;
 int provoked[LAST_STATUS + 1];
-
-int check(int ok, const char *format, ...)
-{
-    if (ok) {
-        checks_passed++;
-    } else {
-        va_list args;
-        checks_failed++;
-        fputs("FAIL: ", stdout);
-        va_start(args, format);
-        vprintf(format, args);
-        va_end(args);
-        fputc('\n', stdout);
-        fflush(stdout);
-    }
-    return ok;
-}
 
 int expect_status(const char *what, tbasis_status got, tbasis_status want)
 {

@@ -4,17 +4,8 @@
 
 #include <stddef.h>
 
+#include "counted.h"
 #include "tbasis.h"
-
-extern long checks_passed;
-extern long checks_failed;
-
-/* Counts one check; prints "FAIL: <message>" when ok is zero. Returns ok. */
-int check(int ok, const char *format, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
 
 /* The highest status value the header defines. */
 #define LAST_STATUS TBASIS_ERROR_NO_LEGACY_FORM

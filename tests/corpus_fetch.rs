@@ -214,14 +214,20 @@ fn fetch_corpus_fetches_every_file_from_a_mirror_and_refuses_a_corrupted_one() {
             .filter(|dir| !dir.join("blender").exists()),
     )
     .unwrap();
-    let mut fetch = script();
-    fetch
-        .arg("--mirror")
-        .arg(&mirror)
-        .arg("--dest")
-        .arg(&dest)
-        .env("PATH", &without_blender);
-    let output = run(fetch, "scripts/fetch-corpus without Blender");
+    let fetch_with_path = |path: &std::ffi::OsStr| {
+        let mut fetch = script();
+        fetch
+            .arg("--mirror")
+            .arg(&mirror)
+            .arg("--dest")
+            .arg(&dest)
+            .env("PATH", path);
+        fetch
+    };
+    let output = run(
+        fetch_with_path(&without_blender),
+        "scripts/fetch-corpus without Blender",
+    );
     assert_eq!(
         output.status.code(),
         Some(1),
@@ -249,14 +255,10 @@ fn fetch_corpus_fetches_every_file_from_a_mirror_and_refuses_a_corrupted_one() {
     std::fs::set_permissions(&blender, permissions).unwrap();
     let with_stand_in =
         std::env::join_paths(std::iter::once(tools.clone()).chain(std::env::split_paths(&without_blender))).unwrap();
-    let mut fetch = script();
-    fetch
-        .arg("--mirror")
-        .arg(&mirror)
-        .arg("--dest")
-        .arg(&dest)
-        .env("PATH", &with_stand_in);
-    let output = run_ok(fetch, "scripts/fetch-corpus with a Blender on PATH");
+    let output = run_ok(
+        fetch_with_path(&with_stand_in),
+        "scripts/fetch-corpus with a Blender on PATH",
+    );
     let expected = format!(
         "{} files fetched, {} already there",
         derived.len(),

@@ -576,6 +576,7 @@ fn build_contract(dir: &Path, name: &str, lib: &Path, flags: &[&str], sanitized:
     let mut command = compiler(false, dir);
     command
         .arg(c_tests("contract.c"))
+        .arg(Path::new(CRATE_DIR).join("c_tests/counted.c"))
         .args(C_FLAGS)
         .arg("-pthread")
         .args(flags);
@@ -635,7 +636,10 @@ fn each_call_reads_the_thread_count_when_it_starts_and_has_its_own_workers() {
     let lib = library_dir();
     let exe = dir.join("workers");
     let mut command = compiler(false, &dir);
-    command.arg(c_tests("workers.c")).args(C_FLAGS).arg("-pthread");
+    command
+        .arg(c_tests("workers.c"))
+        .arg(Path::new(CRATE_DIR).join("c_tests/counted.c"));
+    command.args(C_FLAGS).arg("-pthread");
     command.arg("-I").arg(Path::new(CRATE_DIR).join("include"));
     command.arg("-L").arg(&lib).arg("-ltbasis_mikktspace").arg("-ldl");
     command.arg(format!("-Wl,-rpath,{}", lib.display()));

@@ -19,11 +19,11 @@
  * callback (TBASIS_INJECT_PANIC set), "ok 2" when each returned 1 after its callbacks.
  */
 #include <pthread.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "../counted.h"
 #include "tbasis_mikktspace.h"
 
 /* A callback call: which, face, vertex, and for set calls the arguments. */
@@ -222,24 +222,6 @@ int main(void)
 }
 
 #else
-
-static long checks_passed, checks_failed;
-
-static int check(int ok, const char *format, ...)
-{
-    va_list args;
-    if (ok) {
-        checks_passed++;
-        return 1;
-    }
-    checks_failed++;
-    printf("FAIL: ");
-    va_start(args, format);
-    vprintf(format, args);
-    va_end(args);
-    printf("\n");
-    return 0;
-}
 
 static tbool generate(SMikkTSpaceInterface *interface, mesh *m)
 {

@@ -33,11 +33,11 @@
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <pthread.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "../counted.h"
 #include "tbasis_mikktspace.h"
 
 enum { COLS = 256, ROWS = 160, FACES = COLS * ROWS, SLOTS = 4 * FACES, VALUES = 9, MAX_LIVE = 256 };
@@ -268,24 +268,6 @@ static void *call(void *argument)
     r->result = genTangSpaceDefault(&context);
     current = NULL;
     return NULL;
-}
-
-static long checks_passed, checks_failed;
-
-static int check(int ok, const char *format, ...)
-{
-    va_list args;
-    if (ok) {
-        checks_passed++;
-        return 1;
-    }
-    checks_failed++;
-    printf("FAIL: ");
-    va_start(args, format);
-    vprintf(format, args);
-    va_end(args);
-    printf("\n");
-    return 0;
 }
 
 /* What every call must show: 1 after a set call per face vertex, all on its calling thread; every

@@ -13,6 +13,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 use tbasis::{generate, scratch_size_for, Options, Output, ScratchBuffer};
+use tbasis_test_support::cases::Case;
 use tbasis_test_support::face_meshes::{tbasis_calls, FaceMesh, Run};
 use tbasis_test_support::needs;
 use tbasis_test_support::shapes::flat_grid;
@@ -98,23 +99,27 @@ fn new_advised(before: &[(usize, usize)], len: usize) -> Vec<(usize, usize)> {
         .collect()
 }
 
-#[test]
-fn scratch_of_32_mib_or_more_asks_for_huge_pages_and_smaller_does_not() {
+/// Runs `test`, one test at a time, on two grids whose scratch for method MIKKTSPACE (about 125
+/// bytes a corner) is about 19 MB, then 49 MB: each with that size and whether it is 32 MiB or more.
+/// Where the kernel has no transparent huge pages, skips ([`needs`]).
+fn on_grids_below_and_above_32_mib(mut test: impl FnMut(Case, usize, bool)) {
     if !needs::TRANSPARENT_HUGE_PAGES.found_or_skip() {
         return;
     }
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
-    let options = Options::mikktspace();
-    // Method MIKKTSPACE's scratch is about 125 bytes a corner: about 19 MB, then 49 MB.
     for (quads, large) in [(160, false), (256, true)] {
-        let grid = flat_grid("grid", quads, quads, 1.0 / quads as f32);
+        let grid = flat_grid(&format!("{quads} x {quads} quads"), quads, quads, 1.0 / quads as f32);
+        let needed = scratch_size_for(&grid.mesh(), &Options::mikktspace()).expect("a size");
+        assert_eq!(needed >= 32 * MIB, large, "{needed} bytes of scratch for {}", grid.name);
+        test(grid, needed, large);
+    }
+}
+
+#[test]
+fn scratch_of_32_mib_or_more_asks_for_huge_pages_and_smaller_does_not() {
+    let options = Options::mikktspace();
+    on_grids_below_and_above_32_mib(|grid, needed, large| {
         let mesh = grid.mesh();
-        let needed = scratch_size_for(&mesh, &options).expect("a size");
-        assert_eq!(
-            needed >= 32 * MIB,
-            large,
-            "{needed} bytes of scratch for {quads} x {quads} quads"
-        );
         let before = advised_mappings();
         let mut scratch = ScratchBuffer::new();
         let mut tangents = vec![[0.0f32; 4]; grid.vertex_count()];
@@ -131,20 +136,14 @@ fn scratch_of_32_mib_or_more_asks_for_huge_pages_and_smaller_does_not() {
             assert!(advised.is_empty(), "{needed} bytes: advised mappings {advised:x?}");
         }
         drop(scratch);
-    }
+    });
 }
 
 #[test]
 fn mikktspace_calls_without_scratch_ask_for_huge_pages_from_32_mib() {
-    if !needs::TRANSPARENT_HUGE_PAGES.found_or_skip() {
-        return;
-    }
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let options = Options::mikktspace();
-    for (quads, large) in [(160, false), (256, true)] {
-        let grid = flat_grid("grid", quads, quads, 1.0 / quads as f32);
+    on_grids_below_and_above_32_mib(|grid, needed, large| {
         let mesh = grid.mesh();
-        let needed = scratch_size_for(&mesh, &options).expect("a size");
         let mut tangents = vec![[0.0f32; 4]; grid.vertex_count()];
         let freed = large_frees(|| {
             generate(&mesh, &options, &mut Output::new(tangents.as_mut_slice())).expect("generated");
@@ -155,13 +154,11 @@ fn mikktspace_calls_without_scratch_ask_for_huge_pages_from_32_mib() {
             assert_eq!(
                 working,
                 [&(needed, true)],
-                "{quads} x {quads} quads: frees of 32 MiB or more {freed:?}"
+                "{}: frees of 32 MiB or more {freed:?}",
+                grid.name
             );
         } else {
-            assert!(
-                working.is_empty(),
-                "{quads} x {quads} quads: frees of 32 MiB or more {freed:?}"
-            );
+            assert!(working.is_empty(), "{}: frees of 32 MiB or more {freed:?}", grid.name);
         }
 
         // The callback interface, on the same triangles: its memory is sized per face vertex.
@@ -179,7 +176,8 @@ fn mikktspace_calls_without_scratch_ask_for_huge_pages_from_32_mib() {
         assert_eq!(
             advised,
             usize::from(large),
-            "{quads} x {quads} quads, callbacks: frees of 32 MiB or more {freed:?}"
+            "{}, callbacks: frees of 32 MiB or more {freed:?}",
+            grid.name
         );
-    }
+    });
 }

@@ -42,7 +42,7 @@ use tbasis_test_support::load::{self, ManifestRow, Primitive};
 use tbasis_test_support::mikktspace_reference::reference_corners;
 use tbasis_test_support::mikktspace_scenes::{self, IndexData, StressMesh};
 use tbasis_test_support::needs;
-use tbasis_test_support::run::{generate_corners_into, generate_into, UNTOUCHED};
+use tbasis_test_support::run::{frame_with_bits, generate_corners_into, generate_into, UNTOUCHED};
 
 /// Mismatching corners shown per mesh and run; the rest are counted.
 const SHOWN: usize = 4;
@@ -61,15 +61,6 @@ fn same(a: f32, b: f32) -> bool {
 
 fn same_frame(a: [f32; 4], b: [f32; 4]) -> bool {
     (0..4).all(|k| same(a[k], b[k]))
-}
-
-/// A frame with its bits.
-fn show(t: [f32; 4]) -> String {
-    let bits = t.map(f32::to_bits);
-    format!(
-        "{t:?} [{:08x} {:08x} {:08x} {:08x}]",
-        bits[0], bits[1], bits[2], bits[3]
-    )
 }
 
 /// One mesh as both sides read it.
@@ -204,8 +195,8 @@ fn compare_corners(subject: &Subject, ours: &[[f32; 4]], reference: &[[f32; 4]])
             format!(
                 "{}: ours {} reference {}",
                 subject.corner(c),
-                show(ours[c]),
-                show(reference[c])
+                frame_with_bits(ours[c]),
+                frame_with_bits(reference[c])
             )
         })
         .collect();
@@ -242,9 +233,9 @@ fn check_vertices(
     for (v, first) in subject.first_corners().into_iter().enumerate() {
         let t = tangents[v];
         let problem = match first {
-            Some(c) if !same_frame(t, reference[c]) => Some(format!("reference {}", show(reference[c]))),
+            Some(c) if !same_frame(t, reference[c]) => Some(format!("reference {}", frame_with_bits(reference[c]))),
             Some(c) if t.map(f32::to_bits) != our_corners[c].map(f32::to_bits) => {
-                Some(format!("our corner {c} {}", show(our_corners[c])))
+                Some(format!("our corner {c} {}", frame_with_bits(our_corners[c])))
             }
             Some(_) => None,
             None => {
@@ -258,7 +249,7 @@ fn check_vertices(
             if bad.len() < SHOWN {
                 bad.push(format!(
                     "vertex {v} (first corner {first:?}): ours {}, {problem}",
-                    show(t)
+                    frame_with_bits(t)
                 ));
             }
         }
@@ -590,8 +581,8 @@ fn check_stored(row: &ManifestRow, subject: &Subject, ours: &[[f32; 4]], stored:
                 list.len(),
                 ours.len(),
                 subject.corner(c),
-                show(ours[c]),
-                show(stored[v])
+                frame_with_bits(ours[c]),
+                frame_with_bits(stored[v])
             ));
         }
     }

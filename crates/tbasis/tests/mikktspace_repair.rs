@@ -27,6 +27,7 @@ use tbasis::{generate_corners, DegeneratePolicy, Mesh, Options, Report, StridedM
 use tbasis_test_support::load::{self, Primitive};
 use tbasis_test_support::mikktspace_reference::reference_corners;
 use tbasis_test_support::needs;
+use tbasis_test_support::run::frame_with_bits;
 
 /// Largest angle between mikktspace.c's nearly valid tangent and its repaired one.
 const MAX_ANGLE_DEG: f64 = 0.05;
@@ -529,15 +530,6 @@ fn same_bits(a: [f32; 4], b: [f32; 4]) -> bool {
     a.map(f32::to_bits) == b.map(f32::to_bits)
 }
 
-/// A frame with its bits.
-fn shown(t: [f32; 4]) -> String {
-    let bits = t.map(f32::to_bits);
-    format!(
-        "{t:?} [{:08x} {:08x} {:08x} {:08x}]",
-        bits[0], bits[1], bits[2], bits[3]
-    )
-}
-
 /// An indexed mesh both sides read.
 struct Subject<'a> {
     name: String,
@@ -639,8 +631,8 @@ fn check_rule(subject: &Subject, coverage: &mut Coverage) -> Vec<String> {
                 subject.name,
                 subject.indices[c],
                 normal_of(c),
-                shown(reference[c]),
-                shown(ours[c]),
+                frame_with_bits(reference[c]),
+                frame_with_bits(ours[c]),
                 verdicts[c]
             ));
         }

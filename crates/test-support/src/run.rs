@@ -117,3 +117,12 @@ fn into_report(outcome: Result<Report, Error>, report: &mut Report) -> Result<()
     }
     result
 }
+
+/// A frame as tests print it: its floats, then their bits.
+pub fn frame_with_bits(t: [f32; 4]) -> String {
+    let bits = t.map(f32::to_bits);
+    format!(
+        "{t:?} [{:08x} {:08x} {:08x} {:08x}]",
+        bits[0], bits[1], bits[2], bits[3]
+    )
+}
