@@ -20,7 +20,7 @@ mod common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 use std::sync::{Mutex, OnceLock};
 
 use common::artifacts::{library_dir, profile_dir};
@@ -569,13 +569,14 @@ fn the_header_declares_mikktspace_h_abi() {
     );
 }
 
-/// Compiles `c_tests/mikktspace/contract.c` into `dir/name` with `flags`, linked to the drop-in
-/// in `lib`: its archive when `sanitized` (then sanitized), else its shared library.
-fn build_contract(dir: &Path, name: &str, lib: &Path, flags: &[&str], sanitized: bool) -> PathBuf {
+/// Compiles `c_tests/mikktspace/SOURCE` with the counted checks (`c_tests/counted.c`) into
+/// `dir/name` with `flags`, linked to the drop-in in `lib`: its archive when `sanitized` (then
+/// sanitized), else its shared library.
+fn build_program(source: &str, dir: &Path, name: &str, lib: &Path, flags: &[&str], sanitized: bool) -> PathBuf {
     let exe = dir.join(name);
     let mut command = compiler(false, dir);
     command
-        .arg(c_tests("contract.c"))
+        .arg(c_tests(source))
         .arg(Path::new(CRATE_DIR).join("c_tests/counted.c"))
         .args(C_FLAGS)
         .arg("-pthread")
@@ -591,8 +592,22 @@ fn build_contract(dir: &Path, name: &str, lib: &Path, flags: &[&str], sanitized:
         command.arg(format!("-Wl,-rpath,{}", lib.display()));
     }
     command.arg("-o").arg(&exe);
-    run_ok(command, &format!("compiling c_tests/mikktspace/contract.c ({name})"));
+    run_ok(command, &format!("compiling c_tests/mikktspace/{source} ({name})"));
     exe
+}
+
+/// Runs a program of counted checks (`c_tests/counted.c`): it must end well, its last line
+/// `N passed, 0 failed`.
+fn assert_checks_pass(command: Command, what: &str) -> Output {
+    let output = run(command, what);
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    let summary = stdout.lines().last().unwrap_or_default();
+    assert!(
+        output.status.success() && summary.ends_with(" passed, 0 failed"),
+        "{what}: {}, {summary}",
+        output.status
+    );
+    output
 }
 
 /// `c_tests/mikktspace/contract.c`: what the header promises beyond mikktspace.c's results
@@ -602,21 +617,18 @@ fn build_contract(dir: &Path, name: &str, lib: &Path, flags: &[&str], sanitized:
 #[test]
 fn the_dropin_keeps_the_contract_of_its_header() {
     let dir = c_build::work_dir(SUITE, "contract");
-    let check = |command: Command, what: &str| {
-        let output = run(command, what);
-        let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
-        let summary = stdout.lines().last().unwrap_or_default();
-        assert!(
-            output.status.success() && summary.ends_with(" passed, 0 failed"),
-            "{what}: {}",
-            output.status
-        );
-        output
-    };
-    let plain = build_contract(&dir, "contract", &library_dir(), &[], false);
+    let check = assert_checks_pass;
+    let plain = build_program("contract.c", &dir, "contract", &library_dir(), &[], false);
     check(Command::new(&plain), "the contract checks");
     if needs::SANITIZERS.found_or_skip() {
-        let mut command = Command::new(build_contract(&dir, "sanitized", &library_dir(), &[], true));
+        let mut command = Command::new(build_program(
+            "contract.c",
+            &dir,
+            "sanitized",
+            &library_dir(),
+            &[],
+            true,
+        ));
         c_build::sanitizer_environment(&mut command);
         c_build::assert_no_sanitizer_reports(&check(command, "the contract checks, sanitized"));
     }
@@ -633,26 +645,12 @@ fn the_dropin_keeps_the_contract_of_its_header() {
 #[test]
 fn each_call_reads_the_thread_count_when_it_starts_and_has_its_own_workers() {
     let dir = c_build::work_dir(SUITE, "workers");
-    let lib = library_dir();
-    let exe = dir.join("workers");
-    let mut command = compiler(false, &dir);
-    command
-        .arg(c_tests("workers.c"))
-        .arg(Path::new(CRATE_DIR).join("c_tests/counted.c"));
-    command.args(C_FLAGS).arg("-pthread");
-    command.arg("-I").arg(Path::new(CRATE_DIR).join("include"));
-    command.arg("-L").arg(&lib).arg("-ltbasis_mikktspace").arg("-ldl");
-    command.arg(format!("-Wl,-rpath,{}", lib.display()));
-    command.arg("-o").arg(&exe);
-    run_ok(command, "compiling c_tests/mikktspace/workers.c");
-    let output = run(Command::new(&exe), "the worker counts");
-    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
-    let summary = stdout.lines().last().unwrap_or_default();
-    assert!(
-        output.status.success() && summary.ends_with(" passed, 0 failed"),
-        "the worker counts: {}, {summary}",
-        output.status
-    );
+    let exe = build_program("workers.c", &dir, "workers", &library_dir(), &["-ldl"], false);
+    // Its calls wait for each other: a call that failed would leave the other waiting, so the run
+    // is cut off (`timeout`, status 124) rather than left hanging.
+    let mut command = Command::new("timeout");
+    command.arg("600").arg(&exe);
+    assert_checks_pass(command, "the worker counts");
 }
 
 /// With the test-only feature `fault-injection` and `TBASIS_INJECT_PANIC` set, both entry points
@@ -676,7 +674,14 @@ fn a_panic_inside_the_dropin_returns_0_and_calls_nothing() {
     cargo.arg("--target-dir").arg(&target);
     run_ok(cargo, "building the drop-in with fault-injection");
     let dir = c_build::work_dir(SUITE, "faults");
-    let exe = build_contract(&dir, "faults", &target.join("debug"), &["-DCONTRACT_FAULTS"], false);
+    let exe = build_program(
+        "contract.c",
+        &dir,
+        "faults",
+        &target.join("debug"),
+        &["-DCONTRACT_FAULTS"],
+        false,
+    );
     for (inject, expected) in [(true, "internal 2"), (false, "ok 2")] {
         // Cargo's LD_LIBRARY_PATH would load the ordinary build before the program's rpath does.
         let mut command = Command::new(&exe);

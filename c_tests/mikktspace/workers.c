@@ -326,8 +326,8 @@ int main(void)
     check_call("4, set to 1 during the call", &late, 4, &one);
     check(same_threads(&late, &four), "4, set to 1 during the call: %ld threads started, %ld at once; alone %ld, %ld",
           late.threads.started, late.threads.most, four.threads.started, four.threads.most);
-    check_call("the call after it", &after, 1, &one);
-    check(after.threads.started == 0, "the call after it: %ld threads started", after.threads.started);
+    check_call("the call after the one set to 1", &after, 1, &one);
+    check(after.threads.started == 0, "the call after the one set to 1: %ld threads started", after.threads.started);
     init_run(&early, 1);
     early.threads_in_callback = 4;
     call(&early);
@@ -335,8 +335,9 @@ int main(void)
     call(&then);
     check_call("1, set to 4 during the call", &early, 1, &one);
     check(early.threads.started == 0, "1, set to 4 during the call: %ld threads started", early.threads.started);
-    check_call("the call after it", &then, 4, &one);
-    check(same_threads(&then, &four), "the call after it: %ld threads started, %ld at once; with 4 alone %ld, %ld",
+    check_call("the call after the one set to 4", &then, 4, &one);
+    check(same_threads(&then, &four),
+          "the call after the one set to 4: %ld threads started, %ld at once; with 4 alone %ld, %ld",
           then.threads.started, then.threads.most, four.threads.started, four.threads.most);
 
     /* Two calls at once. The first starts with 4 and sets 2; the second, on another thread that

@@ -24,6 +24,7 @@
 //! on small meshes of their own pin what MIKKTSPACE's report counts as degenerate.
 
 use tbasis::{generate_corners, DegeneratePolicy, Mesh, Options, Report, StridedMut};
+use tbasis_test_support::invariants::{dot, unit_normal};
 use tbasis_test_support::load::{self, Primitive};
 use tbasis_test_support::mikktspace_reference::reference_corners;
 use tbasis_test_support::needs;
@@ -39,10 +40,6 @@ fn corners(primitive: &Primitive, policy: DegeneratePolicy) -> (Vec<[f32; 4]>, R
     let report = generate_corners(&primitive.mesh(), &options, &mut StridedMut::from_slice(&mut corners))
         .unwrap_or_else(|e| panic!("{policy:?}: {e}"));
     (corners, report)
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 fn xyz(t: [f32; 4]) -> [f64; 3] {
@@ -307,10 +304,8 @@ fn minus(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// The normal's unit direction and length, `None` when it is zero or not finite.
-fn unit_normal(normal: [f32; 3]) -> Option<([f64; 3], f64)> {
-    let n = normal.map(f64::from);
-    let length = norm(n);
-    (length.is_finite() && length > 0.0).then(|| (scaled(n, 1.0 / length), length))
+fn unit_normal_and_length(normal: [f32; 3]) -> Option<([f64; 3], f64)> {
+    unit_normal(normal).map(|n| (n, norm(normal.map(f64::from))))
 }
 
 /// The unit tangent nearest to `t` in the normal's plane, and the share of `t` in that plane;
@@ -320,7 +315,7 @@ fn in_plane(t: [f64; 3], normal: [f32; 3]) -> Option<([f64; 3], f64)> {
     if !(length.is_finite() && length > 0.0) {
         return None;
     }
-    let part = unit_normal(normal).map_or(t, |(n, _)| minus(t, scaled(n, dot(t, n))));
+    let part = unit_normal(normal).map_or(t, |n| minus(t, scaled(n, dot(t, n))));
     let share = norm(part) / length;
     (share > 0.0).then(|| (scaled(part, 1.0 / norm(part)), share))
 }
@@ -370,7 +365,7 @@ impl Verdict {
         } else {
             Side::Past
         };
-        let (off_plane, limit, plane, kind) = match unit_normal(normal) {
+        let (off_plane, limit, plane, kind) = match unit_normal_and_length(normal) {
             None => (0.0, f64::INFINITY, Side::Within, NormalKind::Unusable),
             Some((n, length)) => {
                 let off = dot(t, n).abs();
@@ -522,7 +517,7 @@ fn is_moved(t: [f32; 4], nearest: ([f64; 3], f64), normal: [f32; 3]) -> bool {
     let t = xyz(t);
     t.iter().all(|x| x.is_finite())
         && (norm(t) - 1.0).abs() <= MOVED
-        && unit_normal(normal).is_none_or(|(n, _)| dot(t, n).abs() <= MOVED)
+        && unit_normal(normal).is_none_or(|n| dot(t, n).abs() <= MOVED)
         && norm(minus(t, target)) <= MOVED / share
 }
 
@@ -595,7 +590,7 @@ fn check_rule(subject: &Subject, coverage: &mut Coverage) -> Vec<String> {
                             .entry("INHERIT: no direction, a donor unlike the fallback")
                             .or_insert(0) += 1;
                     }
-                    let off_plane = unit_normal(normal).map_or(0.0, |(n, _)| dot(xyz(ours[d]), n).abs());
+                    let off_plane = unit_normal(normal).map_or(0.0, |n| dot(xyz(ours[d]), n).abs());
                     if verdict.kept == Side::Past && verdict.share == Side::Within && off_plane > 10.0 * MOVED {
                         *coverage
                             .entry("INHERIT: no direction, a donor off the plane")

@@ -203,13 +203,13 @@ fn uvs_scaled_to_1e_minus_20_and_1e20() {
 
 /// The README's degenerate test: its shape quality `q` does not change with the UVs' rotation or the
 /// order of a triangle's corners, but for rounding. One triangle at a time, for UV triangles of
-/// `q` at least twice or at most half the threshold, the test's outcome is the same at every
-/// angle and in every corner order, on either side of the threshold.
+/// `q` down to 5% from the threshold on either side (the rounding of these coordinates moves `q`
+/// by under 1%), the test's outcome is the same at every angle and in every corner order.
 #[test]
 fn degenerate_test_ignores_uv_rotation_and_corner_order() {
     let threshold = DEFAULT_DEGENERATE_THRESHOLD;
     // A UV triangle (0, 0), (1, 0), (0.5, h) has q = 2 sqrt(3) h / (1.5 + 2 h^2).
-    let qualities = [1e-7f32, 2.5e-6, 5e-6, 2e-5, 4e-5, 1e-3, 0.8];
+    let qualities = [1e-7f32, 5e-6, 9.5e-6, 1.05e-5, 2e-5, 1e-3, 0.8];
     let orders: [[u32; 3]; 3] = [[0, 1, 2], [1, 2, 0], [0, 2, 1]];
     for q in qualities {
         let h = q * 1.5 / (2.0 * 3f32.sqrt());

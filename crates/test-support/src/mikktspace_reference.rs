@@ -5,9 +5,9 @@
 //! buffer (or, unindexed, triangle `t` is vertices `3t..3t+3`), every face a triangle, and
 //! `setTSpaceBasic(face t, vert k)` lands in corner `3t + k` as `[x, y, z, sign]`.
 //!
-//! Used by `crates/tbasis/tests/mikktspace.rs` and `accuracy.rs`, by `crates/compare`'s examples,
-//! and by `tools/gltf`'s tests and the fuzz target, which include it by path: so it depends on
-//! nothing but the standard library and `mikktspace-sys`.
+//! Used by `crates/tbasis/tests/mikktspace.rs`, `mikktspace_repair.rs` and `accuracy.rs`, by
+//! `crates/compare`'s examples, and by `tools/gltf`'s tests and the fuzz target, which include it
+//! by path: so it depends on nothing but the standard library and `mikktspace-sys`.
 
 /// A triangle mesh as mikktspace.c's callbacks read it.
 #[derive(Clone, Copy)]

@@ -296,25 +296,6 @@ mod tests {
     }
 
     #[test]
-    fn this_machine_counts_the_cores_this_process_may_use() {
-        let cores = std::thread::available_parallelism().map_or(1, usize::from);
-        assert_eq!(
-            Parallelism::on_this_machine(None, usize::MAX),
-            Parallelism {
-                workers: cores,
-                threads: 1
-            }
-        );
-        assert_eq!(
-            Parallelism::on_this_machine(jobs(1), usize::MAX),
-            Parallelism {
-                workers: 1,
-                threads: cores
-            }
-        );
-    }
-
-    #[test]
     fn a_caught_panic_gives_its_message() {
         let quiet = std::panic::take_hook();
         std::panic::set_hook(Box::new(|_| {}));

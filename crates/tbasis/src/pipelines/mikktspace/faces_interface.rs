@@ -291,7 +291,12 @@ mod tests {
     #[test]
     fn more_than_int_max_over_4_face_vertices_are_refused() {
         let slots = MAX_SLOTS + 1;
-        let mut bytes = zeroed_bytes(slots * size_of::<Vec3>() + align_of::<Vec3>()).expect("address space");
+        let Ok(mut bytes) = zeroed_bytes(slots * size_of::<Vec3>() + align_of::<Vec3>()) else {
+            // A system that grants no such address space (strict overcommit, little memory).
+            assert!(std::env::var_os("CI").is_none(), "6.4 GB of address space refused");
+            eprintln!("more_than_int_max_over_4_face_vertices_are_refused: skipped: 6.4 GB of address space refused");
+            return;
+        };
         let positions: &[Vec3] = Arena::Carve(&mut bytes).take(slots).expect("carved");
         let mesh = FaceMesh {
             positions,
