@@ -6,6 +6,7 @@ use crate::kernel::error::Error;
 use crate::kernel::memory::{with_memory, Fresh, Place};
 use crate::kernel::mesh::{Mesh, Output, Target};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
+use crate::kernel::parallel;
 use crate::kernel::report::Report;
 use crate::kernel::views::strided::{Footprint, StridedMut};
 use crate::pipelines::{listing, mikktspace, per_vertex};
@@ -150,7 +151,9 @@ fn run(
     // The per-vertex sums are added to from the start; MIKKTSPACE writes before it reads.
     let fresh = match pipeline {
         Pipeline::Mikktspace => Fresh::Untouched,
-        Pipeline::Listing | Pipeline::PerVertex => Fresh::Written,
+        Pipeline::Listing | Pipeline::PerVertex => Fresh::Written {
+            workers: parallel::workers_for(options.threads, mesh.corner_count() / 3),
+        },
     };
     with_memory(
         scratch,

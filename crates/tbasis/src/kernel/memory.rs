@@ -8,8 +8,9 @@
 use core::mem::{align_of, size_of};
 
 use crate::kernel::error::Error;
+use crate::kernel::parallel;
 use crate::kernel::sums::{Links, Scratch, VertexSums};
-use crate::kernel::views::pod::{pod_prefix_mut, try_zeroed_bytes, Pod};
+use crate::kernel::views::pod::{pod_prefix_mut, try_written_zero_bytes, try_zeroed_bytes, Pod};
 
 /// Either counts the bytes the arrays need or hands them out of caller or heap memory.
 pub(crate) enum Arena<'a> {
@@ -71,18 +72,19 @@ pub(crate) fn vertex_arrays_bytes(vertex_count: usize, link_bytes: usize, place:
     }
     let in_memory = if place == Place::Caller { link_bytes } else { 0 };
     let mut no_links = Vec::new();
-    bytes_of(|arena| vertex_arrays(arena, vertex_count, in_memory, Place::Caller, &mut no_links).map(|_| ())).ok()
+    bytes_of(|arena| vertex_arrays(arena, vertex_count, in_memory, (Place::Caller, 1), &mut no_links).map(|_| ())).ok()
 }
 
 /// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena` in
 /// memory from `place`: the sums, the adjacency (right after them, so 4-byte aligned), the flags;
-/// the sums and flags zero (heap memory comes zero, and written: [`Fresh::Written`]). In heap
-/// memory the adjacency is only reserved, in `heap_links`.
+/// the sums and flags zero (heap memory comes zero, and written: [`Fresh::Written`]; the caller's
+/// is zeroed here, on up to `workers` threads). In heap memory the adjacency is only reserved, in
+/// `heap_links`.
 pub fn vertex_arrays<'a>(
     arena: &mut Arena<'a>,
     vertex_count: usize,
     link_bytes: usize,
-    place: Place,
+    (place, workers): (Place, usize),
     heap_links: &'a mut Vec<u8>,
 ) -> Result<Scratch<'a>, Error> {
     let in_arena = if place == Place::Caller { link_bytes } else { 0 };
@@ -91,8 +93,8 @@ pub fn vertex_arrays<'a>(
     let flags: &mut [u8] = arena.take(vertex_count)?;
     let links = match place {
         Place::Caller => {
-            sums.fill(VertexSums::default());
-            flags.fill(0);
+            parallel::fill(sums, VertexSums::default(), workers);
+            parallel::fill(flags, 0, workers);
             Links::Caller(links)
         }
         Place::Heap => Links::reserve(heap_links, link_bytes)?,
@@ -143,10 +145,11 @@ pub(crate) enum Fresh {
     /// Unwritten ([`zeroed_bytes`]): pages a call never touches are never faulted in. For
     /// pipelines that write each array before they read it.
     Untouched,
-    /// Written: for arrays read before they are written (sums added to). A fresh page read first
-    /// is mapped to the shared zero page, so the write after it faults again and, with a second
-    /// thread running, makes every core flush its TLB.
-    Written,
+    /// Written, on up to `workers` threads ([`parallel::fill`]): for arrays read before they are
+    /// written (sums added to). A fresh page read first is mapped to the shared zero page, so the
+    /// write after it faults again and, with a second thread running, makes every core flush its
+    /// TLB.
+    Written { workers: usize },
 }
 
 /// Runs `job` on the working memory of one call: the first `size(Place::Caller)` bytes of the
@@ -168,7 +171,7 @@ pub(crate) fn with_memory<R>(
             let len = size(Place::Heap).ok_or(Error::SizeOverflow)?;
             let mut memory = match fresh {
                 Fresh::Untouched => zeroed_bytes(len)?,
-                Fresh::Written => vec_filled(len, 0)?,
+                Fresh::Written { workers } => try_written_zero_bytes(len, workers).ok_or(Error::OutOfMemory)?,
             };
             job(&mut memory, Place::Heap)
         }
@@ -188,7 +191,7 @@ mod tests {
             &mut Arena::Carve(buffer),
             vertex_count,
             link_bytes,
-            Place::Caller,
+            (Place::Caller, 1),
             &mut unused,
         )?;
         let links = scratch.links.bytes();
@@ -222,6 +225,35 @@ mod tests {
             vertex_arrays_bytes(10, 0, Place::Caller)
         );
         assert_eq!(vertex_arrays_bytes(usize::MAX, 0, Place::Caller), None);
+    }
+
+    #[test]
+    fn memory_written_on_several_threads_is_zero() {
+        let vertex_count = 400_000; // 11 MiB of sums: three workers' worth.
+        for workers in [1, 2, 3] {
+            // Freed memory of the same size is what the allocator hands out next.
+            let len = vertex_arrays_bytes(vertex_count, 0, Place::Heap).unwrap();
+            drop(vec![0xA5u8; len]);
+            let heap = try_written_zero_bytes(len, workers).unwrap();
+            assert!(
+                heap.len() == len && heap.iter().all(|&b| b == 0),
+                "heap, {workers} workers"
+            );
+
+            let mut caller = vec![0xA5u8; len];
+            let mut unused = Vec::new();
+            let place = (Place::Caller, workers);
+            let scratch = vertex_arrays(&mut Arena::Carve(&mut caller), vertex_count, 0, place, &mut unused).unwrap();
+            let zero = VertexSums::default();
+            assert!(
+                scratch.sums.iter().all(|s| *s == zero),
+                "caller's sums, {workers} workers"
+            );
+            assert!(
+                scratch.flags.iter().all(|&f| f == 0),
+                "caller's flags, {workers} workers"
+            );
+        }
     }
 
     #[test]

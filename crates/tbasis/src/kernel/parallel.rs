@@ -71,6 +71,25 @@ fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
     seen.iter().all(|&count| 4 * count <= 3 * sampled)
 }
 
+/// Bytes each worker of [`fill`] should have at least: below that, starting a thread costs more
+/// than filling the bytes on the calling thread saves.
+const MIN_FILL_BYTES_PER_WORKER: usize = 4 << 20;
+
+/// How many of `workers` [`fill`] uses on `bytes` bytes.
+pub(crate) fn fill_workers(bytes: usize, workers: usize) -> usize {
+    workers.min(bytes / MIN_FILL_BYTES_PER_WORKER).clamp(1, MAX_RANGES)
+}
+
+/// Sets every element of `items` to `value`, on [`fill_workers`] consecutive ranges: a large
+/// call's working memory is zeroed before its workers start, and on one thread that wait is the
+/// whole of it.
+pub(crate) fn fill<T: Copy + Send + Sync>(items: &mut [T], value: T, workers: usize) {
+    let ranges = range_ends(items.len(), fill_workers(core::mem::size_of_val(items), workers));
+    run_ranges(ranges.ends(), split(items, ranges.ends(), 1), |_, part| {
+        part.fill(value)
+    });
+}
+
 /// The exclusive ends of `workers` (at most [`MAX_RANGES`]) near-equal consecutive ranges of
 /// `count` items.
 pub fn range_ends(count: usize, workers: usize) -> Ranges {
@@ -453,6 +472,24 @@ mod tests {
     fn ranges_cover_every_vertex_once() {
         assert_eq!(range_ends(10, 3).ends(), [3, 6, 10]);
         assert_eq!(range_ends(usize::MAX, 2).ends().last(), Some(&usize::MAX));
+    }
+
+    #[test]
+    fn fill_splits_large_memory_only_and_writes_every_element() {
+        let mib = 1 << 20;
+        assert_eq!(fill_workers(4 * mib - 1, 2), 1);
+        assert_eq!(fill_workers(8 * mib, 2), 2);
+        assert_eq!(fill_workers(8 * mib, 8), 2);
+        assert_eq!(fill_workers(0, 0), 1);
+        // Odd lengths, and a whole range's worth of elements on each side of every cut.
+        for (len, workers) in [(9 * mib + 3, 2), (17 * mib + 1, 4), (1000, 2)] {
+            let mut bytes = vec![0xA5u8; len];
+            fill(&mut bytes, 7, workers);
+            assert!(bytes.iter().all(|&b| b == 7), "{len} bytes on {workers} workers");
+        }
+        let mut words = vec![u32::MAX; 3 * mib + 1];
+        fill(&mut words, 0, 2);
+        assert!(words.iter().all(|&w| w == 0));
     }
 
     /// A strip of `n` vertices with triangles of consecutive vertices, or (`scattered`) with one

@@ -42,7 +42,14 @@ pub(crate) fn generate(
 ) -> Result<(), Error> {
     // The listing has no adjacency: nothing is reserved apart.
     let mut no_links = Vec::new();
-    let mut scratch = memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), 0, place, &mut no_links)?;
+    let workers = parallel::workers_for(options.threads, mesh.corner_count() / 3);
+    let mut scratch = memory::vertex_arrays(
+        &mut Arena::Carve(memory),
+        mesh.vertex_count(),
+        0,
+        (place, workers),
+        &mut no_links,
+    )?;
     match target {
         Target::Vertices(output) => run(mesh, options, &mut scratch, Some(output), report),
         Target::Corners(tangents) => {

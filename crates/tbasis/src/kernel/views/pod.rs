@@ -3,6 +3,7 @@
 
 use core::mem::{size_of, MaybeUninit};
 
+use crate::kernel::parallel;
 use crate::kernel::sums::VertexSums;
 
 /// Types for which every byte pattern of their size is a valid value.
@@ -73,6 +74,22 @@ pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
         advise_huge_pages(core::slice::from_raw_parts_mut(pointer.cast(), len));
         Some(Vec::from_raw_parts(pointer, len, len))
     }
+}
+
+/// `len` zero bytes, written on up to `workers` threads ([`parallel::fill`]), or `None` when the
+/// memory is not there: for arrays read before they are written (the per-vertex sums), whose
+/// zeroing would otherwise run on one thread before the workers start. The allocation is the
+/// plain one (`malloc`), which reuses memory freed before it; [`try_zeroed_bytes`]'s would zero it
+/// on one thread first wherever it is not fresh from the system.
+pub(crate) fn try_written_zero_bytes(len: usize, workers: usize) -> Option<Vec<u8>> {
+    let mut bytes = Vec::new();
+    bytes.try_reserve_exact(len).ok()?;
+    parallel::fill(&mut bytes.spare_capacity_mut()[..len], MaybeUninit::new(0), workers);
+    // SAFETY: the capacity is at least `len`, and `fill` has written each of the first `len`
+    // elements: it returns only once every range is done (a worker's panic resumes on this thread,
+    // and this line is not reached).
+    unsafe { bytes.set_len(len) };
+    Some(bytes)
 }
 
 /// Asks the system to back the 2 MiB-aligned part of `memory` with huge pages when they are

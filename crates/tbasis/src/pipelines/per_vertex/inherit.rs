@@ -672,7 +672,7 @@ mod tests {
                 &mut Arena::Carve(&mut bytes[1..]),
                 vertex_count,
                 links,
-                Place::Caller,
+                (Place::Caller, 1),
                 &mut unused,
             )
             .unwrap();

@@ -43,13 +43,20 @@ pub(crate) fn memory_bytes(
 /// adjacency in heap memory reserved in `heap_links`.
 fn scratch_in<'a>(
     mesh: &Mesh,
-    policy: DegeneratePolicy,
+    (policy, threads): (DegeneratePolicy, u32),
     memory: &'a mut [u8],
     place: Place,
     heap_links: &'a mut Vec<u8>,
 ) -> Result<Scratch<'a>, Error> {
     let links = sums::link_bytes(policy, mesh.vertex_count(), mesh.corner_count()).ok_or(Error::SizeOverflow)?;
-    memory::vertex_arrays(&mut Arena::Carve(memory), mesh.vertex_count(), links, place, heap_links)
+    let workers = parallel::workers_for(threads, mesh.corner_count() / 3);
+    memory::vertex_arrays(
+        &mut Arena::Carve(memory),
+        mesh.vertex_count(),
+        links,
+        (place, workers),
+        heap_links,
+    )
 }
 
 /// Writes every vertex's frame into `target`, or every corner's ([`corners`]).
@@ -62,7 +69,13 @@ pub(crate) fn generate(
     report: &mut Report,
 ) -> Result<(), Error> {
     let mut heap_links = Vec::new();
-    let mut scratch = scratch_in(mesh, options.degenerate_policy, memory, place, &mut heap_links)?;
+    let mut scratch = scratch_in(
+        mesh,
+        (options.degenerate_policy, options.threads),
+        memory,
+        place,
+        &mut heap_links,
+    )?;
     match target {
         Target::Vertices(output) => resolve_vertices(mesh, options, &mut scratch, Some(output), report),
         Target::Corners(tangents) => {
@@ -80,7 +93,13 @@ pub(crate) fn generate(
 pub(crate) fn refuse_degenerate(mesh: &Mesh, options: &Options, memory: &mut [u8]) -> Result<(), Error> {
     // REJECT has no adjacency: nothing is reserved apart.
     let mut no_links = Vec::new();
-    let mut scratch = scratch_in(mesh, DegeneratePolicy::Reject, memory, Place::Caller, &mut no_links)?;
+    let mut scratch = scratch_in(
+        mesh,
+        (DegeneratePolicy::Reject, options.threads),
+        memory,
+        Place::Caller,
+        &mut no_links,
+    )?;
     let measured = Options {
         method: Method::Angle,
         ..*options
