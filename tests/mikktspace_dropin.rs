@@ -9,7 +9,8 @@
 //! be the same. The drop-in's driver also runs under AddressSanitizer + UBSan and under valgrind.
 //! Beside it: the library's exports, its header's ABI, the contract the header states
 //! (`c_tests/mikktspace/contract.c`), the worker threads each call starts
-//! (`c_tests/mikktspace/workers.c`), a panic inside the boundary, and the sample program of the
+//! (`c_tests/mikktspace/workers.c`), every allocation of a call failing in turn
+//! (`c_tests/mikktspace/out_of_memory.c`), a panic inside the boundary, and the sample program of the
 //! README (`examples/mikktspace`) built with mikktspace.c and relinked.
 //!
 //! A test that needs a missing tool says it is skipped, with the tool named, except under CI, where
@@ -651,6 +652,17 @@ fn each_call_reads_the_thread_count_when_it_starts_and_has_its_own_workers() {
     let mut command = Command::new("timeout");
     command.arg("600").arg(&exe);
     assert_checks_pass(command, "the worker counts");
+}
+
+/// `c_tests/mikktspace/out_of_memory.c`: with one thread, each allocation a call makes, failed in
+/// turn by the program's own allocator (which the shared library's calls reach first), makes the
+/// call return 0 with no set callback called, and leaves no block allocated; past the last, the
+/// call succeeds with the same set calls.
+#[test]
+fn every_failed_allocation_makes_a_dropin_call_return_0_and_call_nothing() {
+    let dir = c_build::work_dir(SUITE, "out_of_memory");
+    let exe = build_program("out_of_memory.c", &dir, "out_of_memory", &library_dir(), &[], false);
+    assert_checks_pass(Command::new(&exe), "the out-of-memory checks");
 }
 
 /// With the test-only feature `fault-injection` and `TBASIS_INJECT_PANIC` set, both entry points
