@@ -8,9 +8,8 @@
 use core::mem::{align_of, size_of};
 
 use crate::kernel::error::Error;
-use crate::kernel::parallel;
 use crate::kernel::sums::{Links, Scratch, VertexSums};
-use crate::kernel::views::pod::{pod_prefix_mut, try_written_zero_bytes, try_zeroed_bytes, Pod};
+use crate::kernel::views::pod::{pod_prefix_mut, try_written_zero_bytes, try_zeroed_bytes, write_zeros, Pod};
 
 /// Either counts the bytes the arrays need or hands them out of caller or heap memory.
 pub(crate) enum Arena<'a> {
@@ -93,8 +92,9 @@ pub fn vertex_arrays<'a>(
     let flags: &mut [u8] = arena.take(vertex_count)?;
     let links = match place {
         Place::Caller => {
-            parallel::fill(sums, VertexSums::default(), workers);
-            parallel::fill(flags, 0, workers);
+            // The zero sum is zero bytes; the flags, 1 byte per vertex, are too few to split.
+            write_zeros(sums, workers);
+            flags.fill(0);
             Links::Caller(links)
         }
         Place::Heap => Links::reserve(heap_links, link_bytes)?,
@@ -145,7 +145,7 @@ pub(crate) enum Fresh {
     /// Unwritten ([`zeroed_bytes`]): pages a call never touches are never faulted in. For
     /// pipelines that write each array before they read it.
     Untouched,
-    /// Written, on up to `workers` threads ([`parallel::fill`]): for arrays read before they are
+    /// Written, on up to `workers` threads ([`try_written_zero_bytes`]): for arrays read before they are
     /// written (sums added to). A fresh page read first is mapped to the shared zero page, so the
     /// write after it faults again and, with a second thread running, makes every core flush its
     /// TLB.

@@ -76,6 +76,17 @@ pub(crate) fn try_zeroed_bytes(len: usize) -> Option<Vec<u8>> {
     }
 }
 
+/// Sets every byte of `items` to zero on up to `workers` threads ([`parallel::fill`], with the
+/// same instance as [`try_written_zero_bytes`]: one copy of the threads' code in the library).
+pub(crate) fn write_zeros<T: Pod>(items: &mut [T], workers: usize) {
+    let len = core::mem::size_of_val(items);
+    // SAFETY: the bytes of `items`, borrowed exclusively for the call, seen as `MaybeUninit<u8>`,
+    // which any byte is; only zeros are written into them, and zero bytes are a valid `T` (Pod:
+    // every byte pattern is one).
+    let bytes = unsafe { core::slice::from_raw_parts_mut(items.as_mut_ptr().cast::<MaybeUninit<u8>>(), len) };
+    parallel::fill(bytes, MaybeUninit::new(0), workers);
+}
+
 /// `len` zero bytes, written on up to `workers` threads ([`parallel::fill`]), or `None` when the
 /// memory is not there: for arrays read before they are written (the per-vertex sums), whose
 /// zeroing would otherwise run on one thread before the workers start. The allocation is the
