@@ -145,10 +145,10 @@ pub(crate) enum Fresh {
     /// Unwritten ([`zeroed_bytes`]): pages a call never touches are never faulted in. For
     /// pipelines that write each array before they read it.
     Untouched,
-    /// Written, on up to `workers` threads ([`try_written_zero_bytes`]): for arrays read before they are
-    /// written (sums added to). A fresh page read first is mapped to the shared zero page, so the
-    /// write after it faults again and, with a second thread running, makes every core flush its
-    /// TLB.
+    /// Written, on up to `workers` threads ([`try_written_zero_bytes`]): for arrays read before
+    /// they are written (sums added to). A fresh page read first is mapped to the shared zero
+    /// page, so the write after it faults again and, with a second thread running, makes every
+    /// core flush its TLB.
     Written { workers: usize },
 }
 
