@@ -659,6 +659,7 @@ fn each_call_reads_the_thread_count_when_it_starts_and_has_its_own_workers() {
 /// call return 0 with no set callback called, and leaves no block allocated; past the last, the
 /// call succeeds with the same set calls.
 #[test]
+#[cfg(target_env = "gnu")] // The program hands allocations on to glibc's own (`__libc_malloc`).
 fn every_failed_allocation_makes_a_dropin_call_return_0_and_call_nothing() {
     let dir = c_build::work_dir(SUITE, "out_of_memory");
     let exe = build_program("out_of_memory.c", &dir, "out_of_memory", &library_dir(), &[], false);

@@ -76,9 +76,9 @@ pub(crate) fn vertex_arrays_bytes(vertex_count: usize, link_bytes: usize, place:
 
 /// Takes the arrays for `vertex_count` vertices and `link_bytes` of adjacency from `arena` in
 /// memory from `place`: the sums, the adjacency (right after them, so 4-byte aligned), the flags;
-/// the sums and flags zero (heap memory comes zero, and written: [`Fresh::Written`]; the caller's
-/// is zeroed here, on up to `workers` threads). In heap memory the adjacency is only reserved, in
-/// `heap_links`.
+/// the sums and flags zero (heap memory comes zero, and written: [`Fresh::Written`]; in the
+/// caller's, the sums are zeroed here on up to `workers` threads, the flags on this one). In heap
+/// memory the adjacency is only reserved, in `heap_links`.
 pub fn vertex_arrays<'a>(
     arena: &mut Arena<'a>,
     vertex_count: usize,
@@ -229,11 +229,15 @@ mod tests {
 
     #[test]
     fn memory_written_on_several_threads_is_zero() {
-        let vertex_count = 400_000; // 11 MiB of sums: three workers' worth.
+        let least = crate::kernel::parallel::MIN_FILL_BYTES_PER_WORKER;
+        let vertex_count = 3 * least / 28 + 1; // Sums for three workers.
         for workers in [1, 2, 3] {
-            // Freed memory of the same size is what the allocator hands out next.
+            // Filled with 0xA5 and freed, the block is what the next allocation of its size reuses
+            // (glibc: once its first, mapped apart, has raised the threshold for mapping).
             let len = vertex_arrays_bytes(vertex_count, 0, Place::Heap).unwrap();
-            drop(vec![0xA5u8; len]);
+            for _ in 0..2 {
+                drop(vec![0xA5u8; len]);
+            }
             let heap = try_written_zero_bytes(len, workers).unwrap();
             assert!(
                 heap.len() == len && heap.iter().all(|&b| b == 0),

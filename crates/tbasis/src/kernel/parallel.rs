@@ -71,9 +71,9 @@ fn split_pays_off(mesh: &Mesh, ends: &[usize]) -> bool {
     seen.iter().all(|&count| 4 * count <= 3 * sampled)
 }
 
-/// Bytes each worker of [`fill`] should have at least: below that, starting a thread costs more
-/// than filling the bytes on the calling thread saves.
-const MIN_FILL_BYTES_PER_WORKER: usize = 4 << 20;
+/// Bytes each worker of [`fill`] should have at least: a conservative choice, well above what
+/// starting a thread costs. Unit tests split small memory too (`entry/determinism_tests.rs`).
+pub(crate) const MIN_FILL_BYTES_PER_WORKER: usize = if cfg!(test) { 4 << 10 } else { 4 << 20 };
 
 /// How many of `workers` [`fill`] uses on `bytes` bytes.
 pub(crate) fn fill_workers(bytes: usize, workers: usize) -> usize {
@@ -476,18 +476,18 @@ mod tests {
 
     #[test]
     fn fill_splits_large_memory_only_and_writes_every_element() {
-        let mib = 1 << 20;
-        assert_eq!(fill_workers(4 * mib - 1, 2), 1);
-        assert_eq!(fill_workers(8 * mib, 2), 2);
-        assert_eq!(fill_workers(8 * mib, 8), 2);
+        let least = MIN_FILL_BYTES_PER_WORKER;
+        assert_eq!(fill_workers(least - 1, 2), 1);
+        assert_eq!(fill_workers(2 * least, 2), 2);
+        assert_eq!(fill_workers(2 * least, 8), 2);
         assert_eq!(fill_workers(0, 0), 1);
         // Odd lengths, and a whole range's worth of elements on each side of every cut.
-        for (len, workers) in [(9 * mib + 3, 2), (17 * mib + 1, 4), (1000, 2)] {
+        for (len, workers) in [(2 * least + 3, 2), (4 * least + 1, 4), (least / 2, 2)] {
             let mut bytes = vec![0xA5u8; len];
             fill(&mut bytes, 7, workers);
             assert!(bytes.iter().all(|&b| b == 7), "{len} bytes on {workers} workers");
         }
-        let mut words = vec![u32::MAX; 3 * mib + 1];
+        let mut words = vec![u32::MAX; least / 2 + 1];
         fill(&mut words, 0, 2);
         assert!(words.iter().all(|&w| w == 0));
     }
