@@ -2,6 +2,7 @@
 //! working arrays of a call without copying.
 
 use core::mem::{size_of, MaybeUninit};
+use core::sync::atomic::AtomicU32;
 
 use crate::kernel::parallel;
 use crate::kernel::sums::VertexSums;
@@ -48,6 +49,27 @@ pub fn pod_prefix_mut<T: Pod>(bytes: &mut [u8], count: usize) -> Option<(&mut [T
     // exclusive borrow owns; T is Pod, so whatever the bytes hold is a valid T.
     let typed = unsafe { core::slice::from_raw_parts_mut(typed.as_mut_ptr().cast::<T>(), count) };
     Some((typed, rest))
+}
+
+/// `words` as consecutive triples (a trailing one or two words left out): one triangle's corners
+/// each.
+pub(crate) fn triples(words: &[u32]) -> &[[u32; 3]] {
+    // SAFETY: `[u32; 3]` is three `u32`s with no padding and `u32`'s alignment, so the first
+    // `words.len() / 3 * 3` words are that many triples, borrowed as long as `words`.
+    unsafe { core::slice::from_raw_parts(words.as_ptr().cast::<[u32; 3]>(), words.len() / 3) }
+}
+
+/// `words` as atomics, so that workers may each store into elements interleaved with the others'
+/// (the weld by value's classes); `None` where the target aligns `AtomicU32` more strictly than
+/// `u32` and `words` does not meet it.
+pub(crate) fn atomic_words(words: &mut [u32]) -> Option<&[AtomicU32]> {
+    if words.as_ptr().align_offset(core::mem::align_of::<AtomicU32>()) != 0 {
+        return None;
+    }
+    // SAFETY: `AtomicU32` has the size and bit validity of `u32`, and the pointer meets its
+    // alignment (checked above); the exclusive borrow of `words` lasts as long as the shared one
+    // returned, so the elements are reached only through the atomics meanwhile.
+    Some(unsafe { core::slice::from_raw_parts(words.as_mut_ptr().cast::<AtomicU32>(), words.len()) })
 }
 
 /// `len` zero bytes from the global allocator's zeroed allocation, or `None` when the memory is not

@@ -82,25 +82,76 @@ struct Lists<'a> {
 }
 
 /// Fills `starts` (one more word than there are welded vertices) and `corners` (one word per good
-/// corner) from the good triangles' welded vertices `ids`.
-fn list<'a>(ids: &[[u32; 3]], starts: &'a mut [u32], corners: &'a mut [u32]) -> Lists<'a> {
-    starts.fill(0);
-    for &id in ids.iter().flatten() {
-        starts[id as usize + 1] += 1;
-    }
-    let mut total = 0;
-    for start in &mut starts[1..] {
-        total += *start;
-        *start = total;
-    }
-    // Each vertex's list filled from its start, which then holds its end: the next one's start.
-    for (c, &id) in ids.iter().flatten().enumerate() {
-        let slot = &mut starts[id as usize];
-        corners[*slot as usize] = c as u32;
-        *slot += 1;
-    }
-    starts.copy_within(..starts.len() - 1, 1);
-    starts[0] = 0;
+/// corner) from the good triangles' welded vertices `ids`, a counting sort on `workers` ranges of
+/// welded vertices: each worker reads every corner and keeps those of its range, so each list is
+/// in corner order on any number of workers. The weld numbers welded vertices in order of first
+/// use, so in `ids` they mostly rise and each worker's test of its range is predictable.
+fn list<'a>(ids: &[[u32; 3]], workers: usize, starts: &'a mut [u32], corners: &'a mut [u32]) -> Lists<'a> {
+    let welded_count = starts.len() - 1;
+    let vertex_ranges = parallel::range_ends(welded_count, workers);
+    let vertex_ends = vertex_ranges.ends();
+    let firsts = || core::iter::once(0).chain(vertex_ends.iter().copied());
+    // 1. Each welded vertex's corners counted into `starts[v + 1]`, summed within its range:
+    //    `starts[v + 1]` becomes the corners of the range's vertices up to `v`.
+    let mut totals = [0u32; parallel::MAX_RANGES];
+    let counts = firsts().zip(parallel::split(&mut starts[1..], vertex_ends, 1));
+    let mut range = 0;
+    let count = |(first, counts): (usize, &mut [u32])| {
+        counts.fill(0);
+        for &id in ids.iter().flatten() {
+            if let Some(count) = counts.get_mut((id as usize).wrapping_sub(first)) {
+                *count += 1;
+            }
+        }
+        let mut total = 0;
+        for count in counts.iter_mut() {
+            total += *count;
+            *count = total;
+        }
+        total
+    };
+    parallel::run(counts, count, |total| {
+        totals[range] = total;
+        range += 1;
+    });
+    // 2. Each range's offset: the corners of the ranges before it.
+    let mut offset = 0;
+    let offsets = totals.map(|total| {
+        offset += total;
+        offset - total
+    });
+    let corner_ranges = parallel::Ranges::from_ends(
+        offsets[1..vertex_ends.len()]
+            .iter()
+            .map(|&o| o as usize)
+            .chain([offset as usize]),
+    );
+    // 3. Each vertex's list filled from its start, which then holds its end: the next one's start.
+    let parts = firsts()
+        .zip(parallel::split(&mut starts[..welded_count], vertex_ends, 1))
+        .zip(parallel::split(corners, corner_ranges.ends(), 1))
+        .zip(offsets);
+    parallel::run(
+        parts,
+        |(((first, cursors), corners), offset)| {
+            let Some(last) = cursors.len().checked_sub(1) else {
+                return;
+            };
+            // Until now `cursors[i]` held the range's corners up to vertex `first + i - 1`.
+            cursors[0] = 0;
+            for (c, &id) in ids.iter().flatten().enumerate() {
+                if let Some(cursor) = cursors.get_mut((id as usize).wrapping_sub(first)) {
+                    corners[*cursor as usize] = c as u32;
+                    *cursor += 1;
+                }
+            }
+            cursors.copy_within(..last, 1);
+            cursors[0] = 0;
+            cursors.iter_mut().for_each(|cursor| *cursor += offset);
+        },
+        |()| {},
+    );
+    starts[welded_count] = offset;
     Lists { starts, corners }
 }
 
@@ -117,7 +168,7 @@ pub(crate) fn evaluate_on_ranges<F: Frames<Vec3>>(
     (starts, corners): (&mut [u32], &mut [u32]),
     frames: &mut F,
 ) -> Result<Settled, Error> {
-    let lists = list(ids, starts, corners);
+    let lists = list(ids, ends.len(), starts, corners);
     let welded_count = lists.starts.len() - 1;
     let corner_total = lists.starts[welded_count] as usize;
     let vertex_ranges = parallel::Ranges::from_ends(

@@ -47,6 +47,7 @@ use crate::kernel::mesh::{Mesh, Output, Target};
 use crate::kernel::options::{DegeneratePolicy, Options};
 use crate::kernel::report::Report;
 use crate::kernel::vector::{Packed, Vec3};
+use crate::kernel::views::pod::triples;
 use crate::kernel::views::strided::StridedMut;
 use crate::kernel::{frame, parallel};
 
@@ -429,7 +430,7 @@ fn solve<S: tspace::Space>(
     //    (GenerateSharedVerticesIndexList): by value where that finds mikktspace.c's welded
     //    vertices and the order of its last edges cannot matter; else by replaying its splitting.
     let vertex_count = attributes.mesh.vertex_count();
-    let by_value = weld_by_value(attributes, b);
+    let by_value = weld_by_value(attributes, threads, b);
     let welded_count = match by_value {
         Some(count) => count,
         None => {
@@ -460,15 +461,21 @@ fn solve<S: tspace::Space>(
         },
     );
     let good = faces::good_first(&b.flags[..triangles], b.order);
-    parallel::run_ranges(ends, parallel::split(b.ids, ends, 1), |first, ids| {
-        for (id, &t) in ids.iter_mut().zip(&b.order[first..]) {
-            let t = t as usize;
-            *id = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
-        }
-    });
+    // Each good triangle's welded vertices: where every triangle is good (the usual mesh), those
+    // of the corners as they are.
+    let ids = if good == triangles {
+        triples(b.welded)
+    } else {
+        parallel::run_ranges(ends, parallel::split(b.ids, ends, 1), |first, ids| {
+            for (id, &t) in ids.iter_mut().zip(&b.order[first..]) {
+                let t = t as usize;
+                *id = [b.welded[3 * t], b.welded[3 * t + 1], b.welded[3 * t + 2]];
+            }
+        });
+        &b.ids[..good]
+    };
     let packed = &b.attributes[..welded_count];
     let order = &b.order[..good];
-    let ids = &b.ids[..good];
 
     // The last-run check (after a weld by value: [`last_run_is_trivial`]), and
     // 5. each good triangle's unit dP/ds, dP/dt and orientation (InitTriInfo, eq. 18-19), and
@@ -493,7 +500,7 @@ fn solve<S: tspace::Space>(
         });
     };
     let mut weld_buffers = WeldBuffers {
-        welded: &mut *b.welded,
+        welded: &*b.welded,
         source: &mut *b.source,
         values: &mut *b.values,
         table: &mut *b.table,
@@ -553,7 +560,9 @@ fn solve<S: tspace::Space>(
     if let Some(extras) = extras.as_deref() {
         faces::force_quad_orientation(packed, ids, order, extras.face_of, &mut b.flags[..good]);
     }
-    for t in 0..triangles {
+    // Fan by fan, no good triangle is GROUP_WITH_ANY: only the degenerate ones are noted.
+    let first_noted = if by_fans { good } else { 0 };
+    for t in first_noted..triangles {
         let unusable = t >= good || b.flags[t] & GROUP_WITH_ANY != 0;
         if unusable {
             report.note_degenerate(b.order[t] as usize);
@@ -869,12 +878,13 @@ fn copy_to_degenerate<S: Copy>(
 /// Step 3 by value ([`value_weld`]): replaces each corner's vertex in `welded` by its welded
 /// vertex, with each vertex's in `slots`, and fills `source`; or leaves `welded` as it was and
 /// returns `None`. Uses `table` as scratch.
-fn weld_by_value(attributes: &Attributes, b: &mut Buffers) -> Option<usize> {
+fn weld_by_value(attributes: &Attributes, threads: u32, b: &mut Buffers) -> Option<usize> {
     let vertex_count = attributes.mesh.vertex_count();
+    let workers = parallel::workers_for(threads, b.welded.len() / 3);
     let class = &mut b.slots[..vertex_count];
     // Two slots per vertex keep the table at most half full; the rest stays untouched.
     let table = &mut b.table[..2 * vertex_count + 2];
-    value_weld::weld(attributes, b.welded, class, b.source, table)
+    value_weld::weld(attributes, workers, b.welded, class, b.source, table)
 }
 
 /// Runs `derivatives` on `threads - 1` workers and `other` beside them on one; `other`'s outcome.
@@ -931,29 +941,20 @@ fn replay_for_last_run(
         welded: &|_| true,
         corner_limit: corner_count,
     };
-    let welded_vertices = (&*b.welded, &b.source[..packed.len()], packed);
-    match weld::representatives(attributes, threads, welded_vertices, every_cell, &mut scratch) {
-        Some(found) => {
-            for &[c, _, first] in found {
-                b.values[b.welded[c as usize] as usize] = attributes.value_of(first as usize);
-            }
-        }
-        // Past a corner limit of every corner: unreachable. The weld of every corner gives the
-        // same indices, and stands here rather than a panic.
-        None => {
-            for (c, slot) in b.welded.iter_mut().enumerate() {
-                *slot = attributes.mesh.indices.corner(c) as u32;
-            }
-            weld::weld(attributes, threads, b.welded, b.source, b.values, scratch);
-        }
+    let welded_vertices = (b.welded, &b.source[..packed.len()], packed);
+    // The cells hold every corner and no more, so the limit is never passed: `None` cannot come
+    // back.
+    let found = weld::representatives(attributes, threads, welded_vertices, every_cell, &mut scratch);
+    for &[c, _, first] in found.unwrap_or_default() {
+        b.values[b.welded[c as usize] as usize] = attributes.value_of(first as usize);
     }
     Ok(())
 }
 
-/// What the last-run check and the replay work in and rewrite: [`Buffers`]' corners' welded
-/// vertices, each welded vertex's source and index, its table and its phase memory.
+/// What the last-run check and the replay read (the corners' welded vertices of [`Buffers`]) and
+/// rewrite: each welded vertex's source and index, its table and its phase memory.
 struct WeldBuffers<'w> {
-    welded: &'w mut [u32],
+    welded: &'w [u32],
     source: &'w mut [u32],
     values: &'w mut [u32],
     table: &'w mut [u32],
