@@ -60,16 +60,14 @@ pub(crate) fn triples(words: &[u32]) -> &[[u32; 3]] {
 }
 
 /// `words` as atomics, so that workers may each store into elements interleaved with the others'
-/// (the weld by value's classes); `None` where the target aligns `AtomicU32` more strictly than
-/// `u32` and `words` does not meet it.
-pub(crate) fn atomic_words(words: &mut [u32]) -> Option<&[AtomicU32]> {
-    if words.as_ptr().align_offset(core::mem::align_of::<AtomicU32>()) != 0 {
-        return None;
-    }
-    // SAFETY: `AtomicU32` has the size and bit validity of `u32`, and the pointer meets its
-    // alignment (checked above); the exclusive borrow of `words` lasts as long as the shared one
-    // returned, so the elements are reached only through the atomics meanwhile.
-    Some(unsafe { core::slice::from_raw_parts(words.as_mut_ptr().cast::<AtomicU32>(), words.len()) })
+/// (the weld by value's classes).
+pub(crate) fn atomic_words(words: &mut [u32]) -> &[AtomicU32] {
+    // Targets that align `AtomicU32` more strictly than `u32` are not supported.
+    const { assert!(core::mem::align_of::<AtomicU32>() == core::mem::align_of::<u32>()) };
+    // SAFETY: `AtomicU32` has the size, bit validity and (asserted above) alignment of `u32`; the
+    // exclusive borrow of `words` lasts as long as the shared one returned, so the elements are
+    // reached only through the atomics meanwhile.
+    unsafe { core::slice::from_raw_parts(words.as_mut_ptr().cast::<AtomicU32>(), words.len()) }
 }
 
 /// `len` zero bytes from the global allocator's zeroed allocation, or `None` when the memory is not

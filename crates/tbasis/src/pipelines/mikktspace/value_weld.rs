@@ -50,7 +50,7 @@ pub(crate) fn weld(
     source: &mut [u32],
     table: &mut [u32],
 ) -> Option<usize> {
-    let classes = atomic_words(class)?;
+    let classes = atomic_words(class);
     match classify(attributes, workers, corners, classes, table) {
         Classified::Done => {}
         Classified::Unusable => return None,

@@ -5,7 +5,7 @@
 #![forbid(unsafe_code)]
 
 use super::attributes::Attributes;
-use super::weld::{self, WeldScratch};
+use super::weld::{self, Wanted, WeldScratch};
 use super::{last_run, value_weld, NONE};
 use crate::kernel::memory::{bytes_of, Arena};
 use crate::kernel::mesh::Mesh;
@@ -50,6 +50,11 @@ fn for_each_case(seed: u64, mut check: impl FnMut(usize, &Case, &Attributes)) {
 }
 
 fn case(rng: &mut TestRng) -> Case {
+    let (vertex_count, triangles) = (3 + rng.below(40), 1 + rng.below(60));
+    sized_case(rng, vertex_count, triangles)
+}
+
+fn sized_case(rng: &mut TestRng, vertex_count: usize, triangles: usize) -> Case {
     let palette: &[f32] = match rng.below(4) {
         0 => &[0.0, 1.0, 2.0, 0.5],
         1 => &[0.0, -0.0, 1.0, 2.0],
@@ -57,16 +62,13 @@ fn case(rng: &mut TestRng) -> Case {
         _ => &[0.0, 1.0, 2e38, -3e38],
     };
     let pick = |rng: &mut TestRng| palette[rng.below(palette.len())];
-    let vertex_count = 3 + rng.below(40);
     let mut case = Case {
         positions: (0..vertex_count).map(|_| [pick(rng), pick(rng), pick(rng)]).collect(),
         normals: (0..vertex_count)
             .map(|_| [0.0, 0.0, if rng.chance(50) { 1.0 } else { pick(rng) }])
             .collect(),
         texcoords: (0..vertex_count).map(|_| [pick(rng), 0.5]).collect(),
-        indices: (0..3 * (1 + rng.below(60)))
-            .map(|_| rng.below(vertex_count) as u32)
-            .collect(),
+        indices: (0..3 * triangles).map(|_| rng.below(vertex_count) as u32).collect(),
     };
     // Exact copies of other vertices, as exporters write them.
     for v in 0..vertex_count {
@@ -279,4 +281,48 @@ fn the_probe_settles_meshes_whose_late_triangles_reuse_early_vertices() {
     }
     // Every vertex used late has a `hi` above `L`: without the probe, past the replay's limit.
     assert!(trivial >= 3, "{trivial} of 4 meshes settled by the probe");
+}
+
+/// The replay of selected cells ([`weld::representatives`]) finds the same representatives on any
+/// number of threads: the box, each welded vertex's cell, the cells selected and the hashes are
+/// found on ranges of welded vertices.
+#[test]
+fn replayed_cells_give_the_same_representatives_on_any_thread_count() {
+    let mut rng = TestRng(0xCE11);
+    let mut compared = 0;
+    for round in 0..300 {
+        let (vertex_count, triangles) = (100 + rng.below(400), 200 + rng.below(400));
+        let case = sized_case(&mut rng, vertex_count, triangles);
+        case.read(|attributes| {
+            let Some((welded, _, source)) = by_value_weld(attributes, &case.indices) else {
+                return;
+            };
+            let packed: Vec<_> = source.iter().map(|&v| attributes.key(v)).collect();
+            let (v, c) = (case.positions.len(), case.indices.len());
+            let size = bytes_of(|a| WeldScratch::take(a, v, c).map(|_| ())).unwrap();
+            let every_third = |w: usize| w % 3 == 0;
+            let replay = |threads: u32, wanted: &(dyn Fn(usize) -> bool + Sync)| {
+                let mut memory = vec![0u8; size];
+                let mut scratch = WeldScratch::take(&mut Arena::Carve(&mut memory), v, c).unwrap();
+                let wanted = Wanted {
+                    welded: wanted,
+                    corner_limit: usize::MAX,
+                };
+                let found =
+                    weld::representatives(attributes, threads, (&welded, &source, &packed), wanted, &mut scratch);
+                found.map(<[_]>::to_vec)
+            };
+            for wanted in [&|_| true, &every_third as &(dyn Fn(usize) -> bool + Sync)] {
+                let one = replay(1, wanted);
+                assert!(one.as_ref().is_some_and(|found| !found.is_empty()), "round {round}");
+                for threads in [2, 3] {
+                    assert_eq!(replay(threads, wanted), one, "round {round}, {threads} threads");
+                }
+            }
+            compared += 1;
+        });
+    }
+    // Not vacuous: the palette without NaN, huge coordinates or mixed zeros (a quarter of the
+    // cases) welds by value.
+    assert!(compared > 40, "{compared} of 300 compared");
 }
