@@ -1,14 +1,14 @@
 //! Welding by value in linear time: the vertices mikktspace.c's weld finds equal, without its
 //! splitting.
 //!
-//! `MergeVertsFast` (see [`super::weld`]) welds two corners exactly when their position, normal
-//! and texture coordinate compare equal with `==`, provided every part it splits has a finite
-//! midpoint and no float is `NaN`: equal positions always fall in one grid cell and on one side of
-//! every split, and the final search compares all eight floats. So where no attribute is `NaN`
-//! and every position coordinate stays below `1e38` (twice it is still finite), its welded
-//! vertices are the classes of equal attributes, which a hash table finds in one pass. Its
-//! representative's bits are read downstream; where a class holds attributes that compare equal
-//! but differ in bits (a -0 against a +0), this pass gives up. Only the representative's index (`values` in
+//! `MergeVertsFast` (see [`super::weld`]) welds two corners exactly when their position, normal and
+//! texture coordinate compare equal with `==`, provided every part it splits has a finite midpoint
+//! and no float is `NaN`: equal positions always fall in one grid cell and on one side of every
+//! split, and the final search compares all eight floats. So where no attribute is `NaN` and every
+//! position coordinate stays below `1e38` (twice it is still finite), its welded vertices are the
+//! classes of equal attributes, which a hash table finds in linear time. Its representative's bits
+//! are read downstream; where a class holds attributes that compare equal but differ in bits (a -0
+//! against a +0), the weld by value gives up. Only the representative's index (`values` in
 //! [`super::weld`]) still depends on the splitting: see [`super::last_run`].
 #![forbid(unsafe_code)]
 
