@@ -15,6 +15,7 @@ pub(crate) mod degenerate;
 pub(crate) mod error;
 pub(crate) mod fold;
 pub(crate) mod frame;
+pub(crate) mod index_bounds;
 pub(crate) mod lanes;
 pub(crate) mod memory;
 pub(crate) mod mesh;

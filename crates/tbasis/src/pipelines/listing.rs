@@ -15,6 +15,7 @@ use core::ops::Range;
 use glam::{Vec2, Vec3, Vec3A};
 
 use crate::kernel::error::Error;
+use crate::kernel::index_bounds::{index_bounds, IndexBounds};
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES, PREFETCH_TRIANGLES};
 use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType, Target};
@@ -83,8 +84,14 @@ fn run(
     // Made only where the workers solve apart: small meshes call often.
     let mut lists: [Vec<Solved>; parallel::MAX_RANGES];
     let (mut found, kept) = if workers == 1 || parallel::worker_count(options.threads, mesh) == workers {
-        let first_loop =
-            |part: &mut Scratch, _: Option<&mut OutputPart>| add_solved(&listing, 0..listing.triangle_count, part);
+        // Several workers skip the blocks of triangles with no corner in their range.
+        let bounds = match workers {
+            1 => None,
+            _ => index_bounds(mesh, listing.triangle_count, workers)?,
+        };
+        let first_loop = |part: &mut Scratch, _: Option<&mut OutputPart>| {
+            add_solved(&listing, 0..listing.triangle_count, part, bounds.as_ref())
+        };
         let found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
         (found, None)
     } else {
@@ -113,8 +120,14 @@ fn run(
 /// `[T B] = [Q1 Q2] * inverse([s1 t1; s2 t2])` and add `sdir` (dP/du) to `tan1`, `tdir` (dP/dv)
 /// to `tan2` of its three vertices, in triangle order, for the vertices `scratch` holds. Also
 /// checks every index, and counts the zero-determinant or non-finite triangles whose first vertex
-/// it holds.
-fn add_solved(listing: &Listing, triangles: Range<usize>, scratch: &mut Scratch) -> Result<Report, Error> {
+/// it holds. With `bounds`, reads only the blocks of triangles with a vertex it holds (every index
+/// was checked when the bounds were found).
+fn add_solved(
+    listing: &Listing,
+    triangles: Range<usize>,
+    scratch: &mut Scratch,
+    bounds: Option<&IndexBounds>,
+) -> Result<Report, Error> {
     simd::run(
         #[inline(always)]
         || {
@@ -123,6 +136,7 @@ fn add_solved(listing: &Listing, triangles: Range<usize>, scratch: &mut Scratch)
                 listing,
                 triangles,
                 scratch,
+                bounds,
             })
         },
     )
@@ -158,7 +172,7 @@ fn solve_apart(listing: &Listing, scratch: &mut Scratch, lists: &mut [Vec<Solved
         .map(|(list, triangles)| Share::Kept(triangles, list));
     let shares = core::iter::once(Share::Added(scratch)).chain(kept);
     let solve = |share: Share| match share {
-        Share::Added(scratch) => add_solved(listing, 0..first_kept, scratch),
+        Share::Added(scratch) => add_solved(listing, 0..first_kept, scratch, None),
         Share::Kept(triangles, kept) => simd::run(
             #[inline(always)]
             || keep_solved(listing, triangles, kept),
@@ -192,32 +206,43 @@ struct Listing<'m> {
     triangle_count: usize,
 }
 
-/// The first loop over `triangles` into one worker's scratch.
+/// The first loop over `triangles` into one worker's scratch, by `bounds` where given.
 struct FirstLoop<'m, 's, 'a> {
     listing: Listing<'m>,
     triangles: Range<usize>,
     scratch: &'s mut Scratch<'a>,
+    bounds: Option<&'s IndexBounds>,
 }
 
 impl PerIndexType for FirstLoop<'_, '_, '_> {
     type Output = Result<Report, Error>;
 
     /// A scratch holding every vertex (one worker, or the first of workers solving apart) skips the
-    /// test of whether it holds a corner, and the request for indices ahead.
+    /// test of whether it holds a corner, and the request for indices ahead; one holding a range of
+    /// them reads, where there are bounds, only the blocks of triangles with a corner in it.
     #[inline(always)]
     fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
         let FirstLoop {
             listing,
             triangles,
             scratch,
+            bounds,
         } = self;
         let vertex_count = listing.mesh.vertex_count();
         let (first, len) = (scratch.first, scratch.sums.len());
         let sums = &mut *scratch.sums;
-        if first == 0 && len == vertex_count {
-            listing.sweep(triangles, sums, corners, Some, false)
-        } else {
-            listing.sweep(triangles, sums, corners, move |v| slot_in(v, first, len), true)
+        let slot = move |v| slot_in(v, first, len);
+        match bounds {
+            _ if first == 0 && len == vertex_count => listing.sweep(triangles, sums, corners, Some, false),
+            // The blocks taken hold mostly triangles of the range, which stream from memory.
+            Some(bounds) => {
+                let mut report = Report::default();
+                for block_run in bounds.touching(triangles, first..first + len) {
+                    report.merge(&listing.sweep(block_run, sums, &corners, slot, false)?);
+                }
+                Ok(report)
+            }
+            None => listing.sweep(triangles, sums, corners, slot, true),
         }
     }
 }

@@ -12,6 +12,7 @@ use crate::kernel::arc_cosine::acos_lanes;
 use crate::kernel::degenerate::Shape;
 use crate::kernel::error::Error;
 use crate::kernel::frame::{is_well_scaled, length_and_direction, length_and_direction_fast};
+use crate::kernel::index_bounds::IndexBounds;
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
 use crate::kernel::memory::vec_with_capacity;
 use crate::kernel::mesh::Mesh;
@@ -543,35 +544,45 @@ fn measure(
 }
 
 /// Adds each triangle's corner terms ([`measure`]) to the vertices `scratch` holds, one triangle
-/// at a time, in triangle order. Degenerate triangles only mark their vertices used, and are
-/// counted where `scratch` holds their first vertex.
+/// at a time, in triangle order; with `bounds`, only the blocks of triangles with a vertex it
+/// holds are read. Degenerate triangles only mark their vertices used, and are counted where
+/// `scratch` holds their first vertex.
 #[inline(always)]
-pub fn accumulate(mesh: &Mesh, options: &Options, scratch: &mut Scratch) -> Result<Report, Error> {
+pub fn accumulate(
+    mesh: &Mesh,
+    options: &Options,
+    scratch: &mut Scratch,
+    bounds: Option<&IndexBounds>,
+) -> Result<Report, Error> {
     let Some(texcoords) = mesh.texcoords else {
         return mark_referenced(mesh, scratch);
     };
     let mut report = Report::default();
     let owned = scratch.first..scratch.first + scratch.flags.len();
-    let triangles = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
+    let all = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
     let keep = |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v));
     let ahead = SumsAhead::of(scratch);
-    measure(
-        mesh,
-        texcoords,
-        options,
-        triangles,
-        keep,
-        |batch| ahead.batch(batch),
-        |t, k, v, term| {
-            let Some(slot) = scratch.slot(v) else {
-                return;
-            };
-            if k == 0 && term.side == NONE {
-                report.note_degenerate(t);
-            }
-            term.add_to(&mut scratch.sums[slot], &mut scratch.flags[slot]);
-        },
-    )?;
+    let runs = bounds.map(|bounds| bounds.touching(all.clone(), owned.clone()));
+    let runs = runs.into_iter().flatten().chain(bounds.is_none().then_some(all));
+    for triangles in runs {
+        measure(
+            mesh,
+            texcoords,
+            options,
+            triangles,
+            keep,
+            |batch| ahead.batch(batch),
+            |t, k, v, term| {
+                let Some(slot) = scratch.slot(v) else {
+                    return;
+                };
+                if k == 0 && term.side == NONE {
+                    report.note_degenerate(t);
+                }
+                term.add_to(&mut scratch.sums[slot], &mut scratch.flags[slot]);
+            },
+        )?;
+    }
     Ok(report)
 }
 
@@ -743,7 +754,7 @@ pub fn accumulate_in_chunks(
         Some(outcome) => outcome,
         None => simd::run(
             #[inline(always)]
-            || accumulate(mesh, options, scratch),
+            || accumulate(mesh, options, scratch, None),
         ),
     }
 }

@@ -18,6 +18,7 @@ pub(crate) mod inherit;
 pub(crate) mod resolve;
 
 use crate::kernel::error::Error;
+use crate::kernel::index_bounds::index_bounds;
 use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, Target};
 use crate::kernel::options::{DegeneratePolicy, Method, Options};
@@ -104,7 +105,7 @@ pub(crate) fn refuse_degenerate(mesh: &Mesh, options: &Options, memory: &mut [u8
         method: Method::Angle,
         ..*options
     };
-    let mut found = accumulate::accumulate(mesh, &measured, &mut scratch)?;
+    let mut found = accumulate::accumulate(mesh, &measured, &mut scratch, None)?;
     refuse_if_degenerate(mesh, &scratch, &mut found)
 }
 
@@ -157,9 +158,15 @@ pub(crate) fn resolve_measured(
     //    range; elsewhere the workers measure ranges of triangles apart, then add.
     let local_workers = parallel::worker_count(options.threads, mesh);
     let workers = parallel::workers_for(options.threads, mesh.corner_count() / 3);
-    let accumulate_range =
-        |part: &mut Scratch, _: Option<&mut OutputPart>| simd::run(|| accumulate::accumulate(mesh, options, part));
     let mut found = if local_workers == workers || vertex_count > u32::MAX as usize {
+        // Several workers skip the blocks of triangles with no corner in their range.
+        let bounds = match workers {
+            1 => None,
+            _ => index_bounds(mesh, mesh.indices.triangle_count(vertex_count)?, workers)?,
+        };
+        let accumulate_range = |part: &mut Scratch, _: Option<&mut OutputPart>| {
+            simd::run(|| accumulate::accumulate(mesh, options, part, bounds.as_ref()))
+        };
         sums::for_each_range(scratch, None, workers, accumulate_range, parallel::merge_results)?
     } else {
         let ranges = parallel::range_ends(vertex_count, workers);
