@@ -286,15 +286,21 @@ fn every_supported_simd_path_gives_the_same_bits() {
 /// the output stays as it was.
 #[test]
 fn an_index_out_of_range_stops_every_worker() {
-    let mut mesh = RandomMesh::new(3000, 15, true).shuffled(15);
-    let indices = mesh.indices.as_mut().expect("indexed");
-    let bad = indices.len() - 7;
-    indices[bad] = 3000;
-    assert_eq!(
-        crate::kernel::parallel::worker_count(2, &mesh.mesh()),
-        1,
-        "triangles measured apart"
-    );
+    for shuffled in [true, false] {
+        let mesh = RandomMesh::new(3000, 15, true);
+        let mut mesh = if shuffled { mesh.shuffled(15) } else { mesh };
+        let indices = mesh.indices.as_mut().expect("indexed");
+        let bad = indices.len() - 7;
+        indices[bad] = 3000;
+        // Triangles measured apart, or vertex ranges whose workers skip blocks by their bounds.
+        let workers = if shuffled { 1 } else { 2 };
+        assert_eq!(crate::kernel::parallel::worker_count(2, &mesh.mesh()), workers);
+        index_out_of_range_stops_every_worker(&mesh, bad);
+    }
+}
+
+/// [`an_index_out_of_range_stops_every_worker`] on one mesh, whose index `bad` is 3000.
+fn index_out_of_range_stops_every_worker(mesh: &RandomMesh, bad: usize) {
     let configurations = [
         (Method::Angle, DegeneratePolicy::Inherit),
         (Method::Lengyel, DegeneratePolicy::Inherit),
@@ -307,7 +313,7 @@ fn an_index_out_of_range_stops_every_worker() {
                 .with_method(method)
                 .with_policy(policy)
                 .with_threads(threads);
-            let outcome = run(&mesh, &options);
+            let outcome = run(mesh, &options);
             let error = Error::IndexOutOfRange {
                 triangle: bad / 3,
                 index: 3000,
@@ -324,6 +330,54 @@ fn an_index_out_of_range_stops_every_worker() {
                 "{method:?} {policy:?}, threads={threads}"
             );
             assert!(outcome.vertex_bits.iter().chain(&outcome.corner_bits).all(|&b| b == 0));
+        }
+    }
+}
+
+/// Where the workers take vertex ranges, a packed index buffer lets them skip blocks of triangles
+/// by their bounds; a strided one does not. Both give the same bits on every thread count.
+#[test]
+fn a_strided_index_buffer_gives_the_bits_of_a_packed_one() {
+    let mesh = RandomMesh::new(3000, 21, true);
+    assert_eq!(crate::kernel::parallel::worker_count(2, &mesh.mesh()), 2);
+    let indices = mesh.indices.as_ref().expect("indexed");
+    // Each index beside a word of padding: a stride of 8 bytes.
+    let padded: Vec<[u32; 2]> = indices.iter().map(|&i| [i, u32::MAX]).collect();
+    let bytes: Vec<u8> = padded.iter().flatten().flat_map(|w| w.to_ne_bytes()).collect();
+    let strided = Strided::<u32>::from_bytes(&bytes, 8, indices.len()).expect("a valid view");
+    assert!(strided.packed().is_none());
+    let bits = |mesh: &Mesh, options: &Options| {
+        let mut corners = vec![[0.0f32; 4]; mesh.corner_count()];
+        let result = generate_corners(mesh, options, &mut StridedMut::from_slice(&mut corners));
+        (
+            result,
+            corners.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>(),
+        )
+    };
+    let configurations = [
+        (Method::Lengyel, DegeneratePolicy::Legacy),
+        (Method::Angle, DegeneratePolicy::Inherit),
+        (Method::Uniform, DegeneratePolicy::Skip),
+    ];
+    for (method, policy) in configurations {
+        let options = Options::default().with_method(method).with_policy(policy);
+        let packed = bits(&mesh.mesh(), &options.with_threads(1));
+        for threads in [1, 2, 8] {
+            let options = options.with_threads(threads);
+            let through_stride = Mesh {
+                indices: Indices::U32(strided),
+                ..mesh.mesh()
+            };
+            assert_eq!(
+                bits(&through_stride, &options),
+                packed,
+                "{method:?} {policy:?}, strided, {threads}"
+            );
+            assert_eq!(
+                bits(&mesh.mesh(), &options),
+                packed,
+                "{method:?} {policy:?}, packed, {threads}"
+            );
         }
     }
 }
