@@ -66,31 +66,58 @@ fn bounds_of<T: Copy + Into<u32> + Sync>(
     Ok(IndexBounds { blocks, triangle_count })
 }
 
-impl IndexBounds {
-    /// The ranges of consecutive triangles, within `triangles`, of the blocks with a vertex in
-    /// `vertices`, in order.
-    pub(crate) fn touching(
-        &self,
-        triangles: Range<usize>,
-        vertices: Range<usize>,
-    ) -> impl Iterator<Item = Range<usize>> + '_ {
-        let touches = move |b: usize| {
-            let [smallest, largest] = self.blocks[b].map(|v| v as usize);
-            smallest < vertices.end && largest >= vertices.start
+/// The runs of consecutive triangles, within `triangles`, that a worker holding `vertices` reads:
+/// those of the blocks with a vertex in `vertices`, in order, or without `bounds` every triangle
+/// as one run. One type for both, so that a loop over them compiles once.
+pub(crate) fn runs<'b>(bounds: Option<&'b IndexBounds>, triangles: Range<usize>, vertices: Range<usize>) -> Runs<'b> {
+    let (block, end_block) = match bounds {
+        Some(bounds) => (
+            triangles.start / BLOCK_TRIANGLES,
+            triangles.end.min(bounds.triangle_count).div_ceil(BLOCK_TRIANGLES),
+        ),
+        None => (0, usize::from(!triangles.is_empty())),
+    };
+    Runs {
+        bounds,
+        triangles,
+        vertices,
+        block,
+        end_block,
+    }
+}
+
+/// The iterator of [`runs`].
+pub(crate) struct Runs<'b> {
+    bounds: Option<&'b IndexBounds>,
+    triangles: Range<usize>,
+    vertices: Range<usize>,
+    block: usize,
+    end_block: usize,
+}
+
+impl Iterator for Runs<'_> {
+    type Item = Range<usize>;
+
+    fn next(&mut self) -> Option<Range<usize>> {
+        let Some(bounds) = self.bounds else {
+            // Without bounds, one run: every triangle.
+            let whole = self.block < self.end_block;
+            self.block = self.end_block;
+            return whole.then(|| self.triangles.clone());
         };
-        let end_block = triangles.end.min(self.triangle_count).div_ceil(BLOCK_TRIANGLES);
-        let mut b = triangles.start / BLOCK_TRIANGLES;
-        core::iter::from_fn(move || {
-            while b < end_block && !touches(b) {
-                b += 1;
-            }
-            let start = b;
-            while b < end_block && touches(b) {
-                b += 1;
-            }
-            let clip = |block: usize| (block * BLOCK_TRIANGLES).clamp(triangles.start, triangles.end);
-            (start < end_block).then(|| clip(start)..clip(b))
-        })
+        let touches = |b: usize| {
+            let [smallest, largest] = bounds.blocks[b].map(|v| v as usize);
+            smallest < self.vertices.end && largest >= self.vertices.start
+        };
+        while self.block < self.end_block && !touches(self.block) {
+            self.block += 1;
+        }
+        let start = self.block;
+        while self.block < self.end_block && touches(self.block) {
+            self.block += 1;
+        }
+        let clip = |block: usize| (block * BLOCK_TRIANGLES).clamp(self.triangles.start, self.triangles.end);
+        (start < self.end_block).then(|| clip(start)..clip(self.block))
     }
 }
 
@@ -120,7 +147,9 @@ mod tests {
             let workers = 1 + rng.below(3);
             for mesh in &meshes {
                 let bounds = index_bounds(mesh, triangle_count, workers).unwrap().unwrap();
-                let taken: Vec<usize> = bounds.touching(triangles.clone(), vertices.clone()).flatten().collect();
+                let taken: Vec<usize> = runs(Some(&bounds), triangles.clone(), vertices.clone())
+                    .flatten()
+                    .collect();
                 let needed: Vec<usize> = triangles
                     .clone()
                     .filter(|&t| mesh.indices.triangle(t).iter().any(|v| vertices.contains(v)))
@@ -156,5 +185,8 @@ mod tests {
         );
         let unindexed = Mesh::new(&positions[..3], &positions[..3]);
         assert!(index_bounds(&unindexed, 1, 2).unwrap().is_none());
+        let whole: Vec<(usize, usize)> = runs(None, 2..9, 0..1).map(|r| (r.start, r.end)).collect();
+        assert_eq!(whole, [(2, 9)], "without bounds, every triangle");
+        assert_eq!(runs(None, 3..3, 0..1).count(), 0);
     }
 }

@@ -117,6 +117,12 @@ pub fn run<P: Send, R: Send>(parts: impl IntoIterator<Item = P>, job: impl Fn(P)
     run_spawning(parts, job, each, || true)
 }
 
+/// `job` on `part`, on the calling thread, through the same compiled job as [`run`]'s when given
+/// the same `job` (a reference to one closure, say): one copy of it in the library.
+pub fn run_one<P, R>(job: impl Fn(P) -> R, part: P) -> R {
+    run_part(&job, part)
+}
+
 /// [`run`], folding the results in part order with `merge`; `None` without parts.
 pub fn run_folded<P: Send, R: Send>(
     parts: impl IntoIterator<Item = P>,
@@ -152,31 +158,33 @@ fn run_spawning<P: Send, R: Send>(
         return each(run_part(&job, first));
     };
     // A part stays in its slot until it runs, so a failed spawn (which drops its closure) loses
-    // nothing; its result waits in its slot until every part has run.
+    // nothing; its result waits in its slot until every part has run. One lock for all the slots,
+    // taken twice per part: the code each kind of part adds to the library stays small.
+    let mut slots: [Slot<P, R>; MAX_RANGES - 1] = [const { Slot::Taken }; MAX_RANGES - 1];
     let mut others = 0;
-    let mut pending = Some(second);
-    let slots: [Mutex<Slot<P, R>>; MAX_RANGES - 1] = core::array::from_fn(|_| {
-        let part = pending.take().or_else(|| parts.next());
-        others += usize::from(part.is_some());
-        Mutex::new(part.map_or(Slot::Taken, Slot::Part))
-    });
+    for (slot, part) in slots.iter_mut().zip(core::iter::once(second).chain(&mut parts)) {
+        *slot = Slot::Part(part);
+        others += 1;
+    }
     assert!(parts.next().is_none(), "more than MAX_RANGES parts");
-    let slots = &slots[..others];
+    let slots = Mutex::new(&mut slots[..others]);
     let run_other = |k: usize| {
-        let mut slot = slots[k].lock().unwrap_or_else(PoisonError::into_inner);
-        let Slot::Part(part) = core::mem::replace(&mut *slot, Slot::Taken) else {
+        let taken = core::mem::replace(
+            &mut slots.lock().unwrap_or_else(PoisonError::into_inner)[k],
+            Slot::Taken,
+        );
+        let Slot::Part(part) = taken else {
             unreachable!("each part runs once")
         };
-        drop(slot);
         let result = run_part(&job, part);
-        *slots[k].lock().unwrap_or_else(PoisonError::into_inner) = Slot::Done(result);
+        slots.lock().unwrap_or_else(PoisonError::into_inner)[k] = Slot::Done(result);
     };
     let (mut first, mut first_result) = (Some(first), None);
     let mut run_first = || first_result = first.take().map(|part| run_part(&job, part));
     run_threads(others, &run_other, &mut run_first, &may_spawn);
     each(first_result.expect("the first part ran"));
-    for slot in slots {
-        match core::mem::replace(&mut *slot.lock().unwrap_or_else(PoisonError::into_inner), Slot::Taken) {
+    for slot in slots.into_inner().unwrap_or_else(PoisonError::into_inner).iter_mut() {
+        match core::mem::replace(slot, Slot::Taken) {
             Slot::Done(result) => each(result),
             _ => unreachable!("every part ran"),
         }
@@ -205,7 +213,7 @@ fn run_threads(
     #[cfg(test)]
     let pinned = crate::kernel::simd::tests::PINNED.with(core::cell::Cell::get);
     std::thread::scope(|scope| {
-        let mut handles: [Option<ScopedJoinHandle<'_, ()>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
+        let mut handles: [Option<ScopedJoinHandle<'_, ()>>; MAX_RANGES - 1] = [const { None }; MAX_RANGES - 1];
         for (k, handle) in handles[..others].iter_mut().enumerate() {
             if may_spawn() {
                 *handle = std::thread::Builder::new()
@@ -257,7 +265,7 @@ fn run_together_spawning<P: Send, R: Send>(
     let pinned = crate::kernel::simd::tests::PINNED.with(core::cell::Cell::get);
     std::thread::scope(|scope| {
         let opening = Opening(&gate);
-        let mut handles: [Option<ScopedJoinHandle<'_, Option<R>>>; MAX_RANGES - 1] = core::array::from_fn(|_| None);
+        let mut handles: [Option<ScopedJoinHandle<'_, Option<R>>>; MAX_RANGES - 1] = [const { None }; MAX_RANGES - 1];
         let mut all_started = true;
         for (part, handle) in others.iter_mut().filter_map(Option::take).zip(&mut handles) {
             let gate = &gate;

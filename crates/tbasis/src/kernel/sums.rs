@@ -118,6 +118,19 @@ impl<'s> Links<'s> {
 }
 
 impl<'s> Scratch<'s> {
+    /// The same arrays and links, borrowed for a while.
+    pub fn reborrow(&mut self) -> Scratch<'_> {
+        Scratch {
+            sums: &mut *self.sums,
+            flags: &mut *self.flags,
+            first: self.first,
+            links: match &mut self.links {
+                Links::Caller(bytes) => Links::Caller(bytes),
+                Links::Heap(heap, len) => Links::Heap(heap, *len),
+            },
+        }
+    }
+
     /// Where vertex `v` sits in this range's arrays, if the range holds it.
     #[inline(always)]
     pub fn slot(&self, v: usize) -> Option<usize> {
@@ -147,7 +160,8 @@ impl<'s> Scratch<'s> {
 /// Runs `job` on the arrays of `workers` consecutive ranges of vertices, each with its part of
 /// `output` if there is one, the first range on the calling thread and the others on their own,
 /// and folds the results in range order with `merge`. With one worker: on the whole arrays and
-/// output. Allocates nothing ([`parallel::run`]).
+/// output, through the same compiled job as the workers' (one copy of it in the library).
+/// Allocates nothing ([`parallel::run`]).
 pub fn for_each_range<R: Send>(
     scratch: &mut Scratch,
     output: Option<&mut Output>,
@@ -155,15 +169,17 @@ pub fn for_each_range<R: Send>(
     job: impl Fn(&mut Scratch, Option<&mut OutputPart>) -> R + Sync,
     merge: impl FnMut(R, R) -> R,
 ) -> R {
+    // One closure, passed by reference to both paths: one compiled job.
+    let job = &|(mut part, mut out): (Scratch, Option<OutputPart>)| job(&mut part, out.as_mut());
     if workers == 1 {
-        return job(scratch, output.map(Output::whole).as_mut());
+        return parallel::run_one(job, (scratch.reborrow(), output.map(Output::whole)));
     }
     let ranges = parallel::range_ends(scratch.flags.len(), workers);
     let ends = ranges.ends();
     let mut outputs = output.map(|output| output.split(ends));
     let outputs = core::iter::from_fn(|| Some(outputs.as_mut().and_then(Iterator::next)));
     let parts = scratch.split(ends).zip(outputs);
-    parallel::run_folded(parts, |(mut part, mut out)| job(&mut part, out.as_mut()), merge).expect("at least one range")
+    parallel::run_folded(parts, job, merge).expect("at least one range")
 }
 
 /// The per-corner output of the per-vertex pipelines, from the frames their vertices kept

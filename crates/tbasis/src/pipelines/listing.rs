@@ -15,7 +15,7 @@ use core::ops::Range;
 use glam::{Vec2, Vec3, Vec3A};
 
 use crate::kernel::error::Error;
-use crate::kernel::index_bounds::{index_bounds, IndexBounds};
+use crate::kernel::index_bounds::{index_bounds, runs, IndexBounds};
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, LANES, PREFETCH_TRIANGLES};
 use crate::kernel::memory::{self, Arena, Place};
 use crate::kernel::mesh::{Mesh, Output, OutputPart, PerIndexType, Target};
@@ -95,7 +95,7 @@ fn run(
         let found = sums::for_each_range(scratch, None, workers, first_loop, parallel::merge_results)?;
         (found, None)
     } else {
-        lists = core::array::from_fn(|_| Vec::new());
+        lists = [const { Vec::new() }; parallel::MAX_RANGES];
         let (found, first_kept) = solve_apart(&listing, scratch, &mut lists[..workers - 1])?;
         (found, Some((first_kept, &lists[..workers - 1])))
     };
@@ -218,8 +218,8 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
     type Output = Result<Report, Error>;
 
     /// A scratch holding every vertex (one worker, or the first of workers solving apart) skips the
-    /// test of whether it holds a corner, and the request for indices ahead; one holding a range of
-    /// them reads, where there are bounds, only the blocks of triangles with a corner in it.
+    /// test of whether it holds a corner; one holding a range of them reads, where there are
+    /// bounds, only the blocks of triangles with a corner in it.
     #[inline(always)]
     fn run(self, corners: impl Fn(usize) -> [usize; 3]) -> Result<Report, Error> {
         let FirstLoop {
@@ -231,19 +231,14 @@ impl PerIndexType for FirstLoop<'_, '_, '_> {
         let vertex_count = listing.mesh.vertex_count();
         let (first, len) = (scratch.first, scratch.sums.len());
         let sums = &mut *scratch.sums;
-        let slot = move |v| slot_in(v, first, len);
-        match bounds {
-            _ if first == 0 && len == vertex_count => listing.sweep(triangles, sums, corners, Some, false),
-            // The blocks taken hold mostly triangles of the range, which stream from memory.
-            Some(bounds) => {
-                let mut report = Report::default();
-                for block_run in bounds.touching(triangles, first..first + len) {
-                    report.merge(&listing.sweep(block_run, sums, &corners, slot, false)?);
-                }
-                Ok(report)
-            }
-            None => listing.sweep(triangles, sums, corners, slot, true),
+        if first == 0 && len == vertex_count {
+            return listing.sweep(triangles, sums, corners, Some);
         }
+        let mut report = Report::default();
+        for run in runs(bounds, triangles, first..first + len) {
+            report.merge(&listing.sweep(run, sums, &corners, |v| slot_in(v, first, len))?);
+        }
+        Ok(report)
     }
 }
 
@@ -308,10 +303,7 @@ impl<'m> Listing<'m> {
         })
     }
 
-    /// `triangles` in order; `slot(v)` is where vertex `v` sits in `sums`, if there. A worker that
-    /// skips most triangles (those without a corner in its range) asks for their indices ahead
-    /// (`prefetch`), so as not to wait on memory; one that owns every vertex reads them in a
-    /// stream, where the request only costs time.
+    /// `triangles` in order; `slot(v)` is where vertex `v` sits in `sums`, if there.
     #[inline(always)]
     fn sweep(
         &self,
@@ -319,13 +311,9 @@ impl<'m> Listing<'m> {
         sums: &mut [VertexSums],
         corners: impl Fn(usize) -> [usize; 3],
         slot: impl Fn(usize) -> Option<usize>,
-        prefetch: bool,
     ) -> Result<Report, Error> {
         let mut report = Report::default();
         for a in triangles {
-            if prefetch {
-                self.mesh.indices.prefetch_triangle(a + PREFETCH_TRIANGLES);
-            }
             let [i1, i2, i3] = self.mesh.checked(corners(a))?;
             if [i1, i2, i3].iter().all(|&v| slot(v).is_none()) {
                 continue;

@@ -179,7 +179,7 @@ pub(crate) fn evaluate_on_ranges<F: Frames<Vec3>>(
     let first_vertices = core::iter::once(0).chain(vertex_ends.iter().copied());
     // Each worker's heap arrays, for its largest fan past the scan limit, and room to spill
     // every corner of its fans.
-    let mut fans: [Fan; parallel::MAX_RANGES] = core::array::from_fn(|_| Fan::default());
+    let mut fans: [Fan; parallel::MAX_RANGES] = [const { Fan::EMPTY }; parallel::MAX_RANGES];
     let mut room = [0; parallel::MAX_RANGES];
     for (((first, &end), fan), room) in first_vertices.clone().zip(vertex_ends).zip(&mut fans).zip(&mut room) {
         let starts = &lists.starts[first..=end];
@@ -233,7 +233,6 @@ struct Small {
 
 /// The arrays of larger fans, on the heap and kept from one to the next, with the fan's edges to
 /// sort.
-#[derive(Default)]
 struct Fan {
     leaving: Vec<u32>,
     reaching: Vec<u32>,
@@ -483,6 +482,19 @@ fn project(inputs: &Inputs, corners: &[u32], directions: &mut [[Vec3; 2]]) {
 }
 
 impl Fan {
+    /// No room yet.
+    const EMPTY: Fan = Fan {
+        leaving: Vec::new(),
+        reaching: Vec::new(),
+        directions: Vec::new(),
+        parent: Vec::new(),
+        sums: Vec::new(),
+        may_part: Vec::new(),
+        set_aside: Vec::new(),
+        members: Vec::new(),
+        edges: Vec::new(),
+    };
+
     /// Room for a fan of `n` corners.
     fn reserve(&mut self, n: usize) -> Result<(), Error> {
         fn grow<T: Clone + Default>(v: &mut Vec<T>, n: usize) -> Result<(), Error> {

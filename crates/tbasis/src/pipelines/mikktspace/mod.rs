@@ -792,17 +792,18 @@ fn write_in_ranges<S: tspace::Space, G: Frames<S>, P: Send>(
 ) -> Result<(), Error> {
     let first_triangles = core::iter::once(0).chain(triangle_ends.iter().copied());
     // One range spills nothing and allocates nothing.
-    let mut spilled: [Vec<tspace::Spilled<S>>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+    let mut spilled: [Vec<tspace::Spilled<S>>; parallel::MAX_RANGES] = [const { Vec::new() }; parallel::MAX_RANGES];
     if ends.len() > 1 {
         for (spilled, &room) in spilled.iter_mut().zip(room) {
             spilled.try_reserve_exact(room).map_err(|_| Error::OutOfMemory)?;
         }
     }
-    let mut frames: [Option<G>; parallel::MAX_RANGES] = {
-        let mut frames = frames.map(Some);
-        core::array::from_fn(|_| frames.next().flatten())
-    };
-    let mut outcomes: [Result<(), Error>; parallel::MAX_RANGES] = core::array::from_fn(|_| Ok(()));
+    let mut slots: [Option<G>; parallel::MAX_RANGES] = [const { None }; parallel::MAX_RANGES];
+    for (slot, frames) in slots.iter_mut().zip(frames) {
+        *slot = Some(frames);
+    }
+    let mut frames = slots;
+    let mut outcomes: [Result<(), Error>; parallel::MAX_RANGES] = [const { Ok(()) }; parallel::MAX_RANGES];
     let ranges = frames
         .iter_mut()
         .zip(first_triangles.clone().zip(ends.iter()))

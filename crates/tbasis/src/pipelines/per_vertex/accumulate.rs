@@ -12,7 +12,7 @@ use crate::kernel::arc_cosine::acos_lanes;
 use crate::kernel::degenerate::Shape;
 use crate::kernel::error::Error;
 use crate::kernel::frame::{is_well_scaled, length_and_direction, length_and_direction_fast};
-use crate::kernel::index_bounds::IndexBounds;
+use crate::kernel::index_bounds::{runs, IndexBounds};
 use crate::kernel::lanes::{lane3, lanes_in_use, set_lane3, BatchReader, Lanes, TriangleBatch, LANES};
 use crate::kernel::memory::vec_with_capacity;
 use crate::kernel::mesh::Mesh;
@@ -562,9 +562,7 @@ pub fn accumulate(
     let all = 0..mesh.indices.triangle_count(mesh.vertex_count())?;
     let keep = |corners: &[usize; 3]| corners.iter().any(|v| owned.contains(v));
     let ahead = SumsAhead::of(scratch);
-    let runs = bounds.map(|bounds| bounds.touching(all.clone(), owned.clone()));
-    let runs = runs.into_iter().flatten().chain(bounds.is_none().then_some(all));
-    for triangles in runs {
+    for triangles in runs(bounds, all, owned.clone()) {
         measure(
             mesh,
             texcoords,
@@ -690,7 +688,7 @@ pub fn accumulate_in_chunks(
     let worker = |(d, mut part): (usize, Scratch)| -> Result<Report, Error> {
         let mut lockstep = parallel::Lockstep::new(&barrier, rounds);
         // The lists this worker fills in a round, taken out of their places meanwhile.
-        let mut own: [Vec<CornerTerm>; parallel::MAX_RANGES] = core::array::from_fn(|_| Vec::new());
+        let mut own: [Vec<CornerTerm>; parallel::MAX_RANGES] = [const { Vec::new() }; parallel::MAX_RANGES];
         let own = &mut own[..workers];
         let mut report = Report::default();
         for round in 0..rounds {
